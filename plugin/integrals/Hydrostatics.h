@@ -1,0 +1,60 @@
+#pragma once
+/// @file Hydrostatics.h
+/// Submerged volume, centre of buoyancy, pressure force and torque, waterline area of a posed body in a
+/// height-field water (DESIGN-NOTES 2.2–2.3), from samples or by exact clipping of the mesh.
+
+#include "bake/SurfaceSamples.h"
+#include "mesh/TriangleMesh.h"
+
+#include <Eigen/Geometry>
+#include <vector>
+
+class btWaterSurface;
+
+namespace buoyancy {
+
+/// Result of one hydrostatic evaluation, world frame.
+struct HydrostaticsResult {
+    double submerged_volume = 0;                          ///< m³
+    Eigen::Vector3d centre_of_buoyancy = Eigen::Vector3d::Zero(); ///< m, world; meaningless when volume is 0
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();      ///< pressure force −Σ P_i A_i, N
+    Eigen::Vector3d torque = Eigen::Vector3d::Zero();     ///< about the reference point given, N·m
+    double waterline_area = 0;                            ///< −Σ_wet A^y for samples; cap area for clipping, m²
+    double wetted_area = 0;                               ///< wetted surface area, m²
+};
+
+/// Per-body scratch arrays (world positions, area vectors, water heights), sized once and reused every
+/// substep so the hot path allocates nothing.
+struct SampleWorkspace {
+    std::vector<double> wx, wy, wz;   ///< world positions, m
+    std::vector<double> wax, way, waz; ///< world area vectors, m²
+    std::vector<double> waterHeight;  ///< f at (wx, wz), m
+    /// Resize every array to n (no-op when already n).
+    void resize(std::size_t n);
+};
+
+/// Transform body-frame samples by `pose` (body → world) into ws (positions and area vectors).
+void transformSamples(const SurfaceSamples& samples, const Eigen::Isometry3d& pose, SampleWorkspace& ws);
+
+/// Sum hydrostatics over wetted samples (y_i < f_i) of a transformed workspace whose waterHeight is
+/// filled. Fields of DESIGN-NOTES 2.2 (not the paper's eq. 11): V = Σ A^y (y − f), ∫x = Σ A^y x (y − f),
+/// ∫y = Σ A^y (y² − f²)/2, ∫z = Σ A^y z (y − f); P_i = ρ g (f_i − y_i), F = −Σ P_i A_i,
+/// τ = Σ (p_i − ref) × (−P_i A_i). Sums in double.
+/// @param fluidDensity ρ, kg/m³ (water 1000)   @param gravity g, m/s² (9.81)
+HydrostaticsResult integrateWettedSamples(const SampleWorkspace& ws, double fluidDensity, double gravity,
+                                          const Eigen::Vector3d& torqueReference);
+
+/// Convenience: transform, query the surface once (batch), integrate.
+HydrostaticsResult sampledHydrostatics(const SurfaceSamples& samples, const Eigen::Isometry3d& pose,
+                                       const btWaterSurface& water, double time, double fluidDensity,
+                                       double gravity, const Eigen::Vector3d& torqueReference,
+                                       SampleWorkspace& ws);
+
+/// Exact-mesh method: clip every triangle of the posed mesh against the water (exact for flat water;
+/// on waves each triangle is cut against the plane through its corners' water heights), and integrate
+/// the same fields over the wetted pieces exactly (they are polynomial over a flat piece).
+HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
+                                       const btWaterSurface& water, double time, double fluidDensity,
+                                       double gravity, const Eigen::Vector3d& torqueReference);
+
+}  // namespace buoyancy

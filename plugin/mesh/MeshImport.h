@@ -1,0 +1,30 @@
+#pragma once
+/// @file MeshImport.h
+/// Loading meshes through assimp. assimp itself can crash or hang on malformed files: a program that
+/// loads untrusted files should call this in a child process with a time limit (the `buoyancy` CLI does,
+/// see bullet_examples/cli/ChildProcessImport.h).
+
+#include "mesh/TriangleMesh.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace buoyancy {
+
+/// Thrown for every mesh that cannot be used; what() names the file and the problem with a count,
+/// e.g. "boat.obj: open surface: 12 boundary edges".
+class MeshError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// File extensions (lower case, with dot) we import and test: .obj .ply .stl .gltf .glb .dae .fbx .3ds
+const std::vector<std::string>& supportedMeshExtensions();
+
+/// Import every mesh of a file as one triangle soup in the scene's frame (assimp node transforms
+/// applied), scaled by `scale`, UVs of channel 0 per corner. No welding or checking yet.
+/// @throws MeshError for a missing file, an extension off the allow-list, an importer error, no triangles.
+TriangleMesh importMeshFile(const std::string& path, double scale = 1.0);
+
+}  // namespace buoyancy
