@@ -24,7 +24,14 @@ const std::vector<std::string>& supportedMeshExtensions();
 
 /// Import every mesh of a file as one triangle soup in the scene's frame (assimp node transforms
 /// applied), scaled by `scale`, UVs of channel 0 per corner. No welding or checking yet.
-/// @throws MeshError for a missing file, an extension off the allow-list, an importer error, no triangles.
-TriangleMesh importMeshFile(const std::string& path, double scale = 1.0);
+/// Node transforms with a negative determinant (mirrors) have their triangles' winding reversed so that
+/// outward stays outward. Point and line primitives are skipped (with a warning).
+/// @param[in] path  file to read; the extension (case-insensitive) must be in supportedMeshExtensions()
+/// @param[in] scale  uniform scale (> 0, finite) applied after the node transforms
+/// @param[out] warnings  when not null, receives what was skipped (points, lines, extra UV channels)
+/// @throws MeshError for a missing file, an empty file, an extension off the allow-list, an importer
+///         error, no triangles (point clouds, line sets), a bad scale.
+TriangleMesh importMeshFile(const std::string& path, double scale = 1.0,
+                            std::vector<MeshWarning>* warnings = nullptr);
 
 }  // namespace buoyancy

@@ -1,0 +1,197 @@
+#include "cli/HydrostaticsCommand.h"
+
+#include "atlas/UvLayout.h"
+#include "bake/BakeSamples.h"
+#include "cli/ChildProcessImport.h"
+#include "cli/CliErrors.h"
+#include "integrals/BuoyancyMethod.h"
+#include "integrals/Hydrostatics.h"
+#include "integrals/MassProperties.h"
+#include "mesh/MeshImport.h"
+#include "mesh/MeshRepair.h"
+#include "water/btWaterSurface.h"
+
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+namespace buoyancy::cli {
+
+void addHydrostaticsCommand(CLI::App& app, HydrostaticsOptions& o) {
+    CLI::App* sub = app.add_subcommand(
+        "hydrostatics",
+        "Dry mass properties and flat-water hydrostatics of a mesh. The pose is applied to the mesh (rotation "
+        "about the axis through the mesh origin, then translation), then flat water at y = H cuts it.");
+    sub->add_option("MESH", o.mesh, "mesh file (.obj .ply .stl .gltf .glb .dae .fbx .3ds)")->required();
+    sub->add_option("--scale", o.scale, "uniform scale applied after import (default 1)");
+    sub->add_option("--rotate", o.rotate, "rotation: axis AX AY AZ (normalised) and angle DEG")
+        ->expected(4)
+        ->type_name("AX AY AZ DEG");
+    sub->add_option("--translate", o.translate, "translation TX TY TZ, m")->expected(3)->type_name("TX TY TZ");
+    sub->add_option("--water-height", o.water_height, "flat water level H, m (default 0)");
+    sub->add_option("--water-density", o.water_density, "water density, kg/m^3 (default 1000)");
+    sub->add_option("--gravity", o.gravity, "gravitational acceleration g, m/s^2 (default 9.81)");
+    sub->add_option("--method", o.method,
+                    "texel-centre | exact-coverage | exact-mesh | default (default: chosen per mesh)");
+    sub->add_option("--texture", o.texture, "texture side N (N x N texels); ignored by exact-mesh");
+    sub->add_option("--import-timeout", o.import_timeout, "time limit of the mesh import, s (default 10)");
+    sub->add_flag("--json", o.json, "print one JSON object instead of a table");
+}
+
+namespace {
+
+void requireFinite(double v, const char* what) {
+    if (!std::isfinite(v) || std::fabs(v) > 1e300) throw UsageError(std::string("non-finite value given for ") + what);
+}
+
+bool allFinite(const Eigen::Vector3d& v) { return v.allFinite(); }
+
+nlohmann::json vec(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+
+}  // namespace
+
+int runHydrostatics(const HydrostaticsOptions& o) {
+    // ---- Validate the flags before any work (exit 2 on bad input) -------------------------------------------
+    requireFinite(o.scale, "--scale");
+    if (!(o.scale > 0)) throw UsageError("--scale must be positive (got " + std::to_string(o.scale) + ")");
+    for (double v : o.rotate) requireFinite(v, "--rotate");
+    for (double v : o.translate) requireFinite(v, "--translate");
+    requireFinite(o.water_height, "--water-height");
+    requireFinite(o.water_density, "--water-density");
+    requireFinite(o.gravity, "--gravity");
+    requireFinite(o.import_timeout, "--import-timeout");
+    if (!(o.water_density > 0)) throw UsageError("--water-density must be positive");
+    if (!(o.gravity > 0)) throw UsageError("--gravity must be positive (gravity points down y)");
+    if (!(o.import_timeout > 0)) throw UsageError("--import-timeout must be positive");
+    const Eigen::Vector3d axis(o.rotate[0], o.rotate[1], o.rotate[2]);
+    if (!(axis.norm() > 1e-12)) throw UsageError("--rotate: the rotation axis is zero");
+    const auto requested = parseBuoyancyMethod(o.method);
+    if (!requested)
+        throw UsageError("--method: unknown method '" + o.method +
+                         "' (texel-centre, exact-coverage, exact-mesh, default)");
+    if (o.texture && (*o.texture < 1 || *o.texture > 8192))
+        throw UsageError("--texture must be between 1 and 8192 (got " + std::to_string(*o.texture) + ")");
+
+    // ---- Load and check the mesh (assimp in a child process) -------------------------------------------------
+    std::vector<MeshWarning> warnings;
+    TriangleMesh mesh;
+    MeshReport report;
+    try {
+        mesh = importMeshInChildProcess(o.mesh, o.scale, o.import_timeout, &warnings);
+        report = prepareMesh(mesh, o.mesh);
+    } catch (const MeshError& e) {
+        throw UsageError(e.what());
+    }
+    for (const auto& w : report.warnings) warnings.push_back(w);
+
+    // ---- Method ---------------------------------------------------------------------------------------------
+    const BuoyancyMethod method = resolveMethod(*requested, mesh.triangleCount());
+    int texture = 0;
+    if (methodUsesTexture(method)) {
+        texture = o.texture ? *o.texture
+                            : (*requested == BuoyancyMethod::Default ? kDefaultLargeMeshTexture
+                                                                     : defaultTextureSize(method));
+    } else if (o.texture) {
+        warnings.push_back({"--texture is ignored by the exact-mesh method"});
+    }
+
+    // Pose: rotation about the axis through the mesh origin, then translation.
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translate(Eigen::Vector3d(o.translate[0], o.translate[1], o.translate[2]));
+    pose.rotate(Eigen::AngleAxisd(o.rotate[3] * M_PI / 180.0, axis.normalized()));
+    const btFlatWaterSurface water(o.water_height);
+
+    MassProperties dry;
+    HydrostaticsResult wet;
+    std::string uvSource = "model";
+    std::size_t sampleCount = 0;
+    if (methodUsesTexture(method)) {
+        UvLayout layout;
+        try {
+            layout = chooseUvLayout(mesh, texture);
+        } catch (const std::exception& e) {
+            throw UsageError(o.mesh + ": " + e.what());
+        }
+        if (layout.generated) {
+            uvSource = "generated";
+            std::string why;
+            for (const auto& r : layout.reasons) why += (why.empty() ? "" : "; ") + r;
+            if (mesh.hasUvs()) warnings.push_back({"model UVs not usable (" + why + "): generated an atlas"});
+        }
+        const SurfaceSamples samples = bakeSurfaceSamples(
+            mesh, layout.corner_uvs, texture,
+            method == BuoyancyMethod::TexelCentre ? BakeMethod::TexelCentre : BakeMethod::ExactCoverage);
+        sampleCount = samples.size();
+        dry = solidMassProperties(samples, 1.0);
+        SampleWorkspace ws;
+        wet = sampledHydrostatics(samples, pose, water, 0.0, o.water_density, o.gravity, pose * dry.centre, ws);
+    } else {
+        uvSource = mesh.hasUvs() ? "model" : "generated";  // no texture is used by exact-mesh
+        dry = polyhedronMassProperties(mesh, 1.0);
+        wet = clippedHydrostatics(mesh, pose, water, 0.0, o.water_density, o.gravity, pose * dry.centre);
+    }
+    if (!std::isfinite(dry.volume) || !allFinite(dry.centre) || !dry.inertia.allFinite() ||
+        !std::isfinite(wet.submerged_volume) || !allFinite(wet.force) || !allFinite(wet.torque))
+        throw InternalError("non-finite result for " + o.mesh);
+    for (const auto& w : warnings) std::cerr << "warning: " << o.mesh << ": " << w.message << '\n';
+
+    // A body is "dry" when no measurable volume is under water (relative to its own volume).
+    const bool isWet = wet.submerged_volume > 1e-12 * std::fabs(dry.volume);
+
+    if (o.json) {
+        nlohmann::json j;
+        nlohmann::json warn = nlohmann::json::array();
+        for (const auto& w : warnings) warn.push_back(w.message);
+        nlohmann::json inertia = nlohmann::json::array();
+        for (int r = 0; r < 3; ++r) inertia.push_back({dry.inertia(r, 0), dry.inertia(r, 1), dry.inertia(r, 2)});
+        j["mesh"] = {{"file", o.mesh},
+                     {"triangles", mesh.triangleCount()},
+                     {"components", report.components},
+                     {"uv", uvSource},
+                     {"warnings", warn},
+                     {"area", dry.area},
+                     {"volume", dry.volume},
+                     {"centre_of_volume", vec(dry.centre)},
+                     {"inertia_unit_density", inertia}};
+        j["method"] = {{"name", buoyancyMethodName(method)}, {"texture", texture}, {"samples", sampleCount}};
+        j["submerged"] = {{"volume", isWet ? wet.submerged_volume : 0.0},
+                          {"centre_of_buoyancy", isWet ? vec(wet.centre_of_buoyancy) : nlohmann::json(nullptr)},
+                          {"force", vec(wet.force)},
+                          {"torque", vec(wet.torque)},
+                          {"waterline_area", wet.waterline_area}};
+        std::cout << j.dump(2) << '\n';
+        return kExitOk;
+    }
+
+    auto v3 = [](const Eigen::Vector3d& v) {
+        char buf[128];
+        std::snprintf(buf, sizeof buf, "(%.9g, %.9g, %.9g)", v.x(), v.y(), v.z());
+        return std::string(buf);
+    };
+    std::printf("mesh               %s\n", o.mesh.c_str());
+    std::printf("  triangles        %zu (components %zu, UVs %s)\n", mesh.triangleCount(), report.components,
+                uvSource.c_str());
+    std::printf("  area             %.9g m^2\n", dry.area);
+    std::printf("  volume           %.9g m^3\n", dry.volume);
+    std::printf("  centre of volume %s m (mesh frame)\n", v3(dry.centre).c_str());
+    std::printf("  inertia / rho    [%.9g %.9g %.9g; %.9g %.9g %.9g; %.9g %.9g %.9g] m^5 (about the centre)\n",
+                dry.inertia(0, 0), dry.inertia(0, 1), dry.inertia(0, 2), dry.inertia(1, 0), dry.inertia(1, 1),
+                dry.inertia(1, 2), dry.inertia(2, 0), dry.inertia(2, 1), dry.inertia(2, 2));
+    std::printf("method             %s", buoyancyMethodName(method));
+    if (texture) std::printf(" (texture %dx%d, %zu samples)", texture, texture, sampleCount);
+    std::printf("\nwater              flat at y = %.9g m, density %.9g kg/m^3, g = %.9g m/s^2\n", o.water_height,
+                o.water_density, o.gravity);
+    std::printf("submerged volume   %.9g m^3 (%.6g %% of the body)\n", isWet ? wet.submerged_volume : 0.0,
+                dry.volume > 0 ? 100.0 * (isWet ? wet.submerged_volume : 0.0) / dry.volume : 0.0);
+    std::printf("centre of buoyancy %s\n", isWet ? (v3(wet.centre_of_buoyancy) + " m (world)").c_str() : "none (dry)");
+    std::printf("force              %s N\n", v3(wet.force).c_str());
+    std::printf("torque             %s N m (about the posed centre of volume)\n", v3(wet.torque).c_str());
+    std::printf("waterline area     %.9g m^2\n", wet.waterline_area);
+    return kExitOk;
+}
+
+}  // namespace buoyancy::cli

@@ -1,0 +1,34 @@
+#pragma once
+/// @file HydrostaticsCommand.h
+/// `buoyancy hydrostatics MESH …`: dry mass properties and flat-water hydrostatics of a posed mesh.
+
+#include <CLI/CLI.hpp>
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace buoyancy::cli {
+
+/// Options of `buoyancy hydrostatics` (defaults as documented in the README).
+struct HydrostaticsOptions {
+    std::string mesh;                         ///< mesh file (allow-listed formats)
+    double scale = 1.0;                       ///< uniform scale applied after import
+    std::array<double, 4> rotate{0, 1, 0, 0}; ///< axis x, y, z and angle in degrees (about the mesh origin)
+    std::array<double, 3> translate{0, 0, 0}; ///< m, applied after the rotation
+    double water_height = 0.0;                ///< m (world y)
+    double water_density = 1000.0;            ///< kg/m³
+    double gravity = 9.81;                    ///< m/s²
+    std::string method = "default";           ///< texel-centre | exact-coverage | exact-mesh | default
+    std::optional<int> texture;               ///< N (texture N×N); ignored with a warning for exact-mesh
+    double import_timeout = 10.0;             ///< s, time limit of the child process that runs assimp
+    bool json = false;                        ///< print one JSON object instead of a table
+};
+
+/// Register the subcommand on `app`; when it is chosen, `run` is set to the function to call after parsing.
+void addHydrostaticsCommand(CLI::App& app, HydrostaticsOptions& options);
+
+/// Run it: prints to stdout, warnings and errors to stderr; returns the exit code (CliErrors.h).
+int runHydrostatics(const HydrostaticsOptions& options);
+
+}  // namespace buoyancy::cli

@@ -1,0 +1,45 @@
+// The `buoyancy` command-line tool: one executable, one subcommand per job.
+//   buoyancy hydrostatics MESH [...]   dry mass properties and flat-water hydrostatics
+//   buoyancy run SCENE.json --out DIR  headless scene runner (trajectory CSV)
+// Exit codes (every subcommand): 0 success, 2 bad input or usage, 3 internal failure.
+
+#include "cli/CliErrors.h"
+#include "cli/HydrostaticsCommand.h"
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+int main(int argc, char** argv) {
+    using namespace buoyancy::cli;
+    CLI::App app{"buoyancy: real-time buoyancy for Bullet Physics (hydrostatics, scene runner)", "buoyancy"};
+    app.require_subcommand(1);
+
+    HydrostaticsOptions hydro;
+    addHydrostaticsCommand(app, hydro);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);  // prints the parser's message on stderr
+        return kExitBadInput;
+    }
+
+    try {
+        if (app.got_subcommand("hydrostatics")) return runHydrostatics(hydro);
+    } catch (const UsageError& e) {
+        std::cerr << "error: " << e.what() << '\n';
+        return kExitBadInput;
+    } catch (const std::exception& e) {
+        std::cerr << "internal error: " << e.what() << '\n';
+        return kExitInternal;
+    }
+    return kExitBadInput;
+}

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Install the Debian 12 packages BulletBuoyancy needs (run as root). Skips apt when everything is present.
+set -euo pipefail
+PACKAGES=(
+  cmake g++ make pkg-config python3
+  libbullet-dev            # Bullet 3.24, float (bullet.pc) and double (bullet-float64.pc) builds
+  libeigen3-dev            # Eigen 3.4
+  libassimp-dev            # assimp 5.2 mesh import
+  assimp-testmodels        # real models used by the tests (and the demo)
+  catch2                   # Catch2 2.13 tests
+  libcli11-dev             # CLI11 command-line parsing
+  nlohmann-json3-dev       # JSON (CLI output, scene files)
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
