@@ -15,6 +15,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -82,7 +83,9 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     MeshReport report;
     try {
         mesh = importMeshInChildProcess(o.mesh, o.scale, o.import_timeout, &warnings);
-        report = prepareMesh(mesh, o.mesh);
+        // Name the file as the importer does (its name, not the whole path) in every message.
+        const std::string name = std::filesystem::path(o.mesh).filename().string();
+        report = prepareMesh(mesh, name.empty() ? o.mesh : name);
     } catch (const MeshError& e) {
         throw UsageError(e.what());
     }
@@ -137,7 +140,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     if (!std::isfinite(dry.volume) || !allFinite(dry.centre) || !dry.inertia.allFinite() ||
         !std::isfinite(wet.submerged_volume) || !allFinite(wet.force) || !allFinite(wet.torque))
         throw InternalError("non-finite result for " + o.mesh);
-    for (const auto& w : warnings) std::cerr << "warning: " << o.mesh << ": " << w.message << '\n';
+    for (const auto& w : warnings) std::cerr << "warning: " << w.message << '\n';
 
     // A body is "dry" when no measurable volume is under water (relative to its own volume).
     const bool isWet = wet.submerged_volume > 1e-12 * std::fabs(dry.volume);

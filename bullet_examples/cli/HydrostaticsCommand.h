@@ -4,7 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include <array>
+#include <vector>
 #include <optional>
 #include <string>
 
@@ -14,8 +14,8 @@ namespace buoyancy::cli {
 struct HydrostaticsOptions {
     std::string mesh;                         ///< mesh file (allow-listed formats)
     double scale = 1.0;                       ///< uniform scale applied after import
-    std::array<double, 4> rotate{0, 1, 0, 0}; ///< axis x, y, z and angle in degrees (about the mesh origin)
-    std::array<double, 3> translate{0, 0, 0}; ///< m, applied after the rotation
+    std::vector<double> rotate{0, 1, 0, 0};    ///< axis x, y, z and angle in degrees (about the mesh origin)
+    std::vector<double> translate{0, 0, 0};    ///< m, applied after the rotation
     double water_height = 0.0;                ///< m (world y)
     double water_density = 1000.0;            ///< kg/m³
     double gravity = 9.81;                    ///< m/s²

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include <exception>
+#include <functional>
 #include <iostream>
 
 int main(int argc, char** argv) {
@@ -19,6 +20,11 @@ int main(int argc, char** argv) {
     HydrostaticsOptions hydro;
     addHydrostaticsCommand(app, hydro);
 
+    // CLI11 only says "A subcommand is required" for a misspelt one: name it.
+    if (argc > 1 && argv[1][0] != '-' && app.get_subcommands(std::function<bool(CLI::App*)>([&](CLI::App* s) { return s->get_name() == argv[1]; })).empty()) {
+        std::cerr << "error: unknown command '" << argv[1] << "' (hydrostatics, run)\n";
+        return kExitBadInput;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -29,6 +29,7 @@ struct SampleWorkspace {
     std::vector<double> wx, wy, wz;   ///< world positions, m
     std::vector<double> wax, way, waz; ///< world area vectors, m²
     std::vector<double> waterHeight;  ///< f at (wx, wz), m
+    std::vector<double> warea;        ///< unsigned sample areas, m² (copied; when empty |A_i| is used)
     /// Resize every array to n (no-op when already n).
     void resize(std::size_t n);
 };

@@ -40,6 +40,7 @@ struct WalkStats {
     std::size_t polygons = 0;  ///< faces with > 3 corners left after triangulation (should be none)
     std::size_t bad_indices = 0;
     std::size_t mirrored_instances = 0;
+    std::size_t faceless_vertices = 0;  ///< vertices of meshes without any face (point clouds)
 };
 
 /// Appends every mesh instance below `node` (recursively) to `out`, with `parent` the accumulated transform.
@@ -62,7 +63,10 @@ void walkNode(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& p
             continue;
         }
         const aiMesh& mesh = *scene.mMeshes[meshIndex];
+        if (mesh.mNumVertices > 0 && mesh.mVertices == nullptr) { ++stats.bad_indices; continue; }
+        if (mesh.mNumFaces > 0 && mesh.mFaces == nullptr) { ++stats.bad_indices; continue; }
         if (mirrored) ++stats.mirrored_instances;
+        if (mesh.mNumFaces == 0) stats.faceless_vertices += mesh.mNumVertices;
         const std::size_t base = out.vertices.size();
         for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
             const aiVector3D& p = mesh.mVertices[v];
@@ -72,6 +76,7 @@ void walkNode(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& p
         const bool hasUv = mesh.HasTextureCoords(0) && mesh.mNumUVComponents[0] >= 2;
         for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
             const aiFace& face = mesh.mFaces[f];
+            if (face.mNumIndices > 0 && face.mIndices == nullptr) { ++stats.bad_indices; continue; }
             if (face.mNumIndices == 1) { ++stats.points; continue; }
             if (face.mNumIndices == 2) { ++stats.lines; continue; }
             if (face.mNumIndices != 3) { ++stats.polygons; continue; }
@@ -133,11 +138,12 @@ TriangleMesh importMeshFile(const std::string& path, double scale, std::vector<M
     if (size == 0) throw fail("empty file");
 
     Assimp::Importer importer;
-    // Triangulate polygons; validate indices and counts (assimp's own consistency check). We weld
-    // ourselves (MeshRepair.cpp), so no JoinIdenticalVertices, and transforms are applied by our walk.
+    // Triangulate polygons only. We weld ourselves (MeshRepair.cpp), so no JoinIdenticalVertices;
+    // transforms are applied by our walk; indices are checked by the walk (aiProcess_ValidateDataStructure
+    // would reject whole files for one empty mesh and turns point clouds into an opaque message).
     const aiScene* scene = nullptr;
     try {
-        scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_ValidateDataStructure);
+        scene = importer.ReadFile(path, aiProcess_Triangulate);
     } catch (const std::exception& e) {
         throw fail(std::string("importer error: ") + e.what());
     }
@@ -161,6 +167,8 @@ TriangleMesh importMeshFile(const std::string& path, double scale, std::vector<M
         s << "no triangles";
         if (stats.points > 0 || stats.lines > 0)
             s << " (" << stats.points << " points, " << stats.lines << " line segments: a point cloud or line set)";
+        else if (stats.faceless_vertices > 0)
+            s << " (a point cloud: " << stats.faceless_vertices << " vertices without faces)";
         throw fail(s.str());
     }
     // Keep UVs only when every triangle has them (a partly mapped scene is treated as unmapped).

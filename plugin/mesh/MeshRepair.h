@@ -20,9 +20,12 @@ struct MeshReport {
     std::vector<MeshWarning> warnings;      ///< things the user should know (flips, intersecting components)
 };
 
-/// Weld vertices by position (tolerance relative to the bounding-box diagonal, default 1e-9 of it... see
-/// implementation doc), drop degenerate triangles, and check: finite coordinates of sane magnitude, closed
-/// (every edge shared by exactly two faces), consistently oriented, outward per component (cavities kept).
+/// Weld vertices by position (within 1e-6 × the bounding-box diagonal D), drop degenerate triangles
+/// (repeated vertex, or area ≤ 1e-12 D²), and check: finite coordinates with |x| ≤ 1e6 m and D ≥ 1e-6 m,
+/// closed (every edge shared by exactly two faces), consistently oriented, outward per component
+/// (an inward component inside nothing is flipped with a warning; inside an outward one it is a cavity
+/// and kept; intersecting components get a warning). Rules and sources: MeshRepair.cpp header.
+/// A clean mesh keeps its vertex order and indices.
 /// @param[in,out] mesh  repaired in place (UVs follow their triangles)
 /// @param[in] sourceName  file name used in error messages
 /// @throws MeshError naming sourceName and the problem with a count, e.g. "open surface: 12 boundary edges"

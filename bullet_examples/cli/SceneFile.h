@@ -1,0 +1,63 @@
+#pragma once
+/// @file SceneFile.h
+/// The JSON scene format of `buoyancy run` (documented in docs/scene-format.md): parsed and validated
+/// completely before anything runs. Every error names the file and the key, e.g.
+/// "boat.json: bodies[1].shape.size: expected an array of 3 numbers > 0".
+
+#include "bullet/btBuoyancySettings.h"
+#include "bullet/btBuoyantBodyBuilder.h"
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace buoyancy::cli {
+
+/// Shape of a scene body.
+struct SceneShape {
+    std::string type;                                  ///< "box", "sphere", "cylinder", "mesh"
+    Eigen::Vector3d size = Eigen::Vector3d::Ones();    ///< box full extents, m
+    double radius = 0.5;                               ///< sphere / cylinder radius, m
+    double height = 1.0;                               ///< cylinder full height (axis y), m
+    int resolution = 128;                              ///< primitive segments around (sphere: rings = resolution/2)
+    std::string file;                                  ///< mesh file, resolved against the scene's folder
+    double scale = 1.0;                                ///< mesh scale
+};
+
+/// One body of a scene.
+struct SceneBody {
+    std::string name;
+    SceneShape shape;
+    btBuoyantBodySettings body;       ///< density or mass, mass model, ballast, collision, fixed
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();   ///< mesh frame origin in world, m
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitY();      ///< rotation axis (normalised)
+    double degrees = 0;                                   ///< rotation angle, degrees
+    Eigen::Vector3d linearVelocity = Eigen::Vector3d::Zero();  ///< COM velocity, world, m/s
+    Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero(); ///< world, rad/s
+    btBuoyancySettings buoyancy;      ///< the "buoyancy" block (library defaults when absent)
+};
+
+/// A whole scene.
+struct Scene {
+    Eigen::Vector3d gravity = Eigen::Vector3d(0, -9.81, 0); ///< m/s², must point down y
+    double dt = 1.0 / 240.0;          ///< fixed substep, s
+    int substepsPerFrame = 4;         ///< stepSimulation(dt·n, n, dt)
+    double duration = 10.0;           ///< s
+    double outputInterval = 0.1;      ///< s
+    double waterHeight = 0.0;         ///< flat water level, m
+    double waterDensity = 1000.0;     ///< kg/m³
+    std::optional<double> groundHeight; ///< static floor y = h
+    std::vector<SceneBody> bodies;
+    std::string directory;            ///< folder of the scene file (mesh paths are relative to it)
+};
+
+/// Read and validate a scene file. @throws UsageError naming the file and key for every problem
+/// (unreadable file, bad JSON, unknown keys, wrong types, out-of-range values, duplicate names, zero axis,
+/// missing mesh files).
+Scene loadSceneFile(const std::string& path);
+
+/// Parse a scene from JSON text; `sourceName` prefixes messages, `directory` resolves mesh paths.
+Scene parseScene(const std::string& text, const std::string& sourceName, const std::string& directory);
+
+}  // namespace buoyancy::cli

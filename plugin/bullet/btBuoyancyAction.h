@@ -1,0 +1,101 @@
+#pragma once
+/// @file btBuoyancyAction.h
+/// The Bullet coupling: one btActionInterface per floating body (in the style of btRaycastVehicle).
+/// Each substep, after Bullet has integrated the transforms, it evaluates the pressure force and torque
+/// (DESIGN-NOTES 2.3), drag and skin friction (2.6) and added mass (2.7) at the body's new pose and applies
+/// them as impulses (F·dt, τ·dt), so any maxSubSteps gives the same motion (DESIGN-NOTES 3).
+///
+/// Usage:  btBuoyancyWorld water(&surface);  btBuoyancyAction action(body, shape, &water);
+///         dynamicsWorld->addAction(&action);   // ... remove it before deleting the body.
+/// Removing the action from the world is safe at any time. Deleting the body while its action is still in
+/// the world is a misuse (checked in debug builds: the body must be in the world the action runs in).
+
+#include "bullet/btBuoyancySettings.h"
+#include "bullet/btBuoyancyShape.h"
+#include "integrals/Hydrostatics.h"
+
+#include <BulletDynamics/Dynamics/btActionInterface.h>
+#include <LinearMath/btTransform.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+class btRigidBody;
+class btBuoyancyWorld;
+class btBuoyantBody;
+
+/// What the last substep computed for one body (world frame). Forces are the ones applied (after the drag
+/// stability limit); torques are about the body's centre of mass.
+struct btBuoyancyResult {
+    double submergedVolume = 0;                 ///< V_sub, m³
+    btVector3 centreOfBuoyancy = btVector3(0, 0, 0); ///< m, world (meaningless when submergedVolume is 0)
+    btVector3 buoyancyForce = btVector3(0, 0, 0);    ///< pressure force, N
+    btVector3 buoyancyTorque = btVector3(0, 0, 0);   ///< pressure torque about the COM, N·m
+    btVector3 dragForce = btVector3(0, 0, 0);        ///< pressure drag + skin friction, N
+    btVector3 dragTorque = btVector3(0, 0, 0);       ///< about the COM, N·m
+    double wettedArea = 0;                      ///< m²
+    double waterlineArea = 0;                   ///< m²
+    double addedMass = 0;                       ///< m_a applied this substep, kg
+    double time = 0;                            ///< water time of the evaluation, s
+    bool applied = false;                       ///< false when nothing was applied (dry, asleep, rejected)
+};
+
+/// Buoyancy of one rigid body in the water of a btBuoyancyWorld.
+class btBuoyancyAction : public btActionInterface {
+public:
+    /// Any rigid body whose collision/COM frame holds the mesh at `meshInCom` (identity when the mesh's
+    /// origin is the COM and its axes the principal axes).
+    /// @param body      the body (not owned; must outlive the action's presence in a world)
+    /// @param shape     shared buoyancy data of the body's mesh
+    /// @param world     the shared context (not owned, outlives the action); the action registers with it
+    /// @param settings  drag/added-mass settings (validated; the method and texture come from `shape`)
+    /// @throws std::invalid_argument naming a bad argument or setting
+    btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBuoyancyShape> shape, btBuoyancyWorld* world,
+                     const btBuoyancySettings& settings = btBuoyancySettings(),
+                     const btTransform& meshInCom = btTransform::getIdentity());
+    /// A body made by btBuoyantBody: its mesh frame follows updateMassProperties automatically.
+    btBuoyancyAction(btBuoyantBody& body, btBuoyancyWorld* world, const btBuoyancySettings& settings = btBuoyancySettings());
+    ~btBuoyancyAction() override;
+    btBuoyancyAction(const btBuoyancyAction&) = delete;
+    btBuoyancyAction& operator=(const btBuoyancyAction&) = delete;
+
+    /// Called by Bullet once per substep after integrateTransforms; applies impulses for `deltaTimeStep`.
+    void updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) override;
+    /// Draws the buoyancy force at the centre of buoyancy and the drag force at the COM (1 m per m·g).
+    void debugDraw(btIDebugDraw* debugDrawer) override;
+
+    /// Result of the last substep.
+    const btBuoyancyResult& getLastResult() const { return m_result; }
+    /// The body.
+    btRigidBody* getRigidBody() const { return m_body; }
+    /// The shared buoyancy data.
+    const std::shared_ptr<const btBuoyancyShape>& getShape() const { return m_shape; }
+    /// Settings in use.
+    const btBuoyancySettings& getSettings() const { return m_settings; }
+    /// Replace the settings. @throws std::invalid_argument (settings unchanged)
+    void setSettings(const btBuoyancySettings& settings);
+    /// The mesh frame in the body's COM frame (for bodies not made by btBuoyantBody).
+    void setMeshInComFrame(const btTransform& meshInCom) { m_meshInCom = meshInCom; }
+    /// The mesh frame in the body's COM frame currently used.
+    btTransform getMeshInComFrame() const;
+    /// Number of substeps whose impulses were rejected as non-finite (should stay 0).
+    std::uint64_t getRejectedCount() const { return m_rejected; }
+
+private:
+    void computeDrag(const Eigen::Vector3d& com, const Eigen::Vector3d& v, const Eigen::Vector3d& w, double density,
+                     double time, Eigen::Vector3d& force, Eigen::Vector3d& torque, Eigen::Vector3d& meanWaterVelocity);
+
+    btRigidBody* m_body;
+    std::shared_ptr<const btBuoyancyShape> m_shape;
+    btBuoyancyWorld* m_world;
+    const btBuoyantBody* m_owner = nullptr;
+    btBuoyancySettings m_settings;
+    btTransform m_meshInCom;
+    btBuoyancyResult m_result;
+    std::uint64_t m_lastSubstep = 0;
+    std::uint64_t m_rejected = 0;
+    // Workspace sized once (no allocation per substep).
+    buoyancy::SampleWorkspace m_ws;
+    std::vector<double> m_ux, m_uy, m_uz;
+};

@@ -1,0 +1,139 @@
+/// @file SampledHydrostatics.cpp
+/// Hydrostatics from surface samples (declared in Hydrostatics.h): DESIGN-NOTES 2.2 (fields that vanish
+/// on the water surface, so only wetted samples are summed — deliberately not the paper's eq. 11, whose
+/// fields miss the cap term) and 2.3 (pressure force and torque).
+
+#include "integrals/CompensatedSum.h"
+#include "integrals/Hydrostatics.h"
+#include "water/btWaterSurface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace buoyancy {
+
+void SampleWorkspace::resize(std::size_t n) {
+    for (auto* v : {&wx, &wy, &wz, &wax, &way, &waz, &waterHeight, &warea})
+        if (v->size() != n) v->resize(n);
+}
+
+void transformSamples(const SurfaceSamples& samples, const Eigen::Isometry3d& pose, SampleWorkspace& ws) {
+    const std::size_t n = samples.size();
+    if (samples.py.size() != n || samples.pz.size() != n || samples.ax.size() != n || samples.ay.size() != n ||
+        samples.az.size() != n)
+        throw std::invalid_argument("transformSamples: sample arrays have different lengths");
+    ws.resize(n);
+    const Eigen::Matrix3d R = pose.linear();
+    const Eigen::Vector3d t = pose.translation();
+    // p_w = R p + t, A_w = R A (area vectors are normals × area: rotate only).
+    for (std::size_t i = 0; i < n; ++i) {
+        const double x = samples.px[i], y = samples.py[i], z = samples.pz[i];
+        ws.wx[i] = R(0, 0) * x + R(0, 1) * y + R(0, 2) * z + t.x();
+        ws.wy[i] = R(1, 0) * x + R(1, 1) * y + R(1, 2) * z + t.y();
+        ws.wz[i] = R(2, 0) * x + R(2, 1) * y + R(2, 2) * z + t.z();
+        const double ax = samples.ax[i], ay = samples.ay[i], az = samples.az[i];
+        ws.wax[i] = R(0, 0) * ax + R(0, 1) * ay + R(0, 2) * az;
+        ws.way[i] = R(1, 0) * ax + R(1, 1) * ay + R(1, 2) * az;
+        ws.waz[i] = R(2, 0) * ax + R(2, 1) * ay + R(2, 2) * az;
+    }
+    if (samples.area.size() == n)
+        std::copy(samples.area.begin(), samples.area.end(), ws.warea.begin());
+    else
+        ws.warea.clear();  // fall back to |A_i| in the integration
+}
+
+HydrostaticsResult integrateWettedSamples(const SampleWorkspace& ws, double fluidDensity, double gravity,
+                                          const Eigen::Vector3d& torqueReference) {
+    const std::size_t n = ws.wx.size();
+    if (ws.wy.size() != n || ws.wz.size() != n || ws.wax.size() != n || ws.way.size() != n || ws.waz.size() != n ||
+        ws.waterHeight.size() != n)
+        throw std::invalid_argument("integrateWettedSamples: workspace arrays have different lengths");
+    const bool haveArea = ws.warea.size() == n;
+    const double rx = torqueReference.x(), ry = torqueReference.y(), rz = torqueReference.z();
+
+    // Per wetted sample, with d = y − f < 0 (d = 0 for dry samples zeroes every term, no branch) and
+    // coordinates relative to the reference r (the fields stay valid under translation):
+    //   V   += A^y d                      (field (0, y − f, 0))
+    //   ∫x  += A^y x' d,  ∫z += A^y z' d  (fields (0, x'(y − f), 0), (0, z'(y − f), 0))
+    //   ∫y  += A^y (y'² − f'²)/2 = A^y d (y' + f')/2
+    //   F   += −P A = ρg d A              (P = ρg (f − y), DESIGN-NOTES 2.3)
+    //   τ   += p' × (−P A) = ρg d (p' × A)
+    // 0:V 1-3:∫p' 4-6:Σ d A 7-9:Σ d p'×A 10:Σ_wet A^y 11:wetted area
+    detail::CompensatedSum<12> acc;
+    for (std::size_t b = 0; b < n; b += detail::kSumBlock) {
+        const std::size_t e = std::min(n, b + detail::kSumBlock);
+        double part[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        for (std::size_t i = b; i < e; ++i) {
+            const double f = ws.waterHeight[i];
+            const double d = std::min(ws.wy[i] - f, 0.0);
+            const double wet = d < 0 ? 1.0 : 0.0;
+            const double x = ws.wx[i] - rx, y = ws.wy[i] - ry, z = ws.wz[i] - rz, fr = f - ry;
+            const double Ax = ws.wax[i], Ay = ws.way[i], Az = ws.waz[i];
+            const double Ayd = Ay * d;
+            part[0] += Ayd;
+            part[1] += Ayd * x;
+            part[2] += Ayd * 0.5 * (y + fr);
+            part[3] += Ayd * z;
+            part[4] += d * Ax;
+            part[5] += Ayd;
+            part[6] += d * Az;
+            part[7] += d * (y * Az - z * Ay);
+            part[8] += d * (z * Ax - x * Az);
+            part[9] += d * (x * Ay - y * Ax);
+            part[10] += wet * Ay;
+            part[11] += wet * (haveArea ? ws.warea[i] : std::sqrt(Ax * Ax + Ay * Ay + Az * Az));
+        }
+        acc.add(part);
+    }
+    const double rg = fluidDensity * gravity;
+    HydrostaticsResult r;
+    r.submerged_volume = acc.value(0);
+    if (r.submerged_volume != 0)
+        r.centre_of_buoyancy = torqueReference + Eigen::Vector3d(acc.value(1), acc.value(2), acc.value(3)) /
+                                                     r.submerged_volume;
+    r.force = rg * Eigen::Vector3d(acc.value(4), acc.value(5), acc.value(6));
+    r.torque = rg * Eigen::Vector3d(acc.value(7), acc.value(8), acc.value(9));
+    r.waterline_area = -acc.value(10);
+    r.wetted_area = acc.value(11);
+    return r;
+}
+
+HydrostaticsResult sampledHydrostatics(const SurfaceSamples& samples, const Eigen::Isometry3d& pose,
+                                       const btWaterSurface& water, double time, double fluidDensity,
+                                       double gravity, const Eigen::Vector3d& torqueReference,
+                                       SampleWorkspace& ws) {
+    if (!std::isfinite(fluidDensity) || fluidDensity < 0)
+        throw std::invalid_argument("sampledHydrostatics: fluid density must be finite and ≥ 0, got " +
+                                    std::to_string(fluidDensity));
+    if (!std::isfinite(gravity)) throw std::invalid_argument("sampledHydrostatics: gravity is not finite");
+    transformSamples(samples, pose, ws);
+    const std::size_t n = samples.size();
+    if (n == 0) return HydrostaticsResult{};
+
+    // Fast path (DESIGN-NOTES 2.5): body entirely above the highest water point → nothing is wet.
+    double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                    std::numeric_limits<double>::infinity()};
+    double hi[3] = {-lo[0], -lo[0], -lo[0]};
+    for (std::size_t i = 0; i < n; ++i) {
+        lo[0] = std::min(lo[0], ws.wx[i]);
+        hi[0] = std::max(hi[0], ws.wx[i]);
+        lo[1] = std::min(lo[1], ws.wy[i]);
+        lo[2] = std::min(lo[2], ws.wz[i]);
+        hi[2] = std::max(hi[2], ws.wz[i]);
+    }
+    double hMin = 0, hMax = 0;
+    water.heightBounds(lo[0], lo[2], hi[0], hi[2], time, hMin, hMax);
+    if (lo[1] >= hMax) return HydrostaticsResult{};
+
+    water.heights(ws.wx.data(), ws.wz.data(), n, time, ws.waterHeight.data());  // one batch call per body
+    HydrostaticsResult r = integrateWettedSamples(ws, fluidDensity, gravity, torqueReference);
+    if (!std::isfinite(r.submerged_volume) || !r.force.allFinite() || !r.torque.allFinite() ||
+        !r.centre_of_buoyancy.allFinite())
+        throw std::runtime_error("sampledHydrostatics: non-finite result (non-finite pose, samples or water heights)");
+    return r;
+}
+
+}  // namespace buoyancy

@@ -1,0 +1,91 @@
+#include "AccuracyHarness.h"
+
+#include "atlas/UvLayout.h"
+#include "bake/BakeSamples.h"
+#include "integrals/Hydrostatics.h"
+#include "integrals/MassProperties.h"
+#include "oracles/PolyhedralOracle.h"
+#include "water/btWaterSurface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace buoyancy_test {
+
+using namespace buoyancy;
+
+AccuracyReport measureAccuracy(const TriangleMesh& mesh, BuoyancyMethod requested, int texture, int depthCount) {
+    AccuracyReport rep;
+    const BuoyancyMethod method = resolveMethod(requested, mesh.triangleCount());
+    rep.method = buoyancyMethodName(method);
+    const OracleMoments exact = oracleDryMoments(mesh.vertices, mesh.triangles);
+    Eigen::AlignedBox3d box;
+    for (const auto& v : mesh.vertices) box.extend(v);
+    const double diag = box.diagonal().norm();
+
+    SurfaceSamples samples;
+    MassProperties dry;
+    if (methodUsesTexture(method)) {
+        rep.texture = texture > 0 ? texture
+                                  : (requested == BuoyancyMethod::Default ? kDefaultLargeMeshTexture
+                                                                          : defaultTextureSize(method));
+        const UvLayout layout = chooseUvLayout(mesh, rep.texture);
+        rep.generated_uvs = layout.generated;
+        samples = bakeSurfaceSamples(mesh, layout.corner_uvs, rep.texture,
+                                     method == BuoyancyMethod::TexelCentre ? BakeMethod::TexelCentre
+                                                                           : BakeMethod::ExactCoverage);
+        rep.samples = samples.size();
+        dry = solidMassProperties(samples, 1.0);
+    } else {
+        dry = polyhedronMassProperties(mesh, 1.0);
+    }
+    rep.dry_volume_pct = 100 * std::fabs(dry.volume - exact.volume) / exact.volume;
+    rep.centre_pct_diag = 100 * (dry.centre - exact.centroid).norm() / diag;
+    const Eigen::Matrix3d Iex = exact.inertiaAboutCentroid();
+    rep.inertia_pct = 100 * (dry.inertia - Iex).norm() / Iex.norm();
+
+    const std::vector<Eigen::AngleAxisd> tilts = {
+        Eigen::AngleAxisd(0, Eigen::Vector3d::UnitX()),
+        Eigen::AngleAxisd(23 * M_PI / 180, Eigen::Vector3d::UnitX()),
+        Eigen::AngleAxisd(41 * M_PI / 180, Eigen::Vector3d(1, 2, 3).normalized()),
+        Eigen::AngleAxisd(90 * M_PI / 180, Eigen::Vector3d::UnitZ())};
+    SampleWorkspace ws;
+    for (const auto& tilt : tilts) {
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.translate(Eigen::Vector3d(0.3, -0.2, 0.1));
+        pose.rotate(tilt);
+        const auto posed = oraclePose(mesh.vertices, pose);
+        double ymin = 1e300, ymax = -1e300;
+        for (const auto& v : posed) ymin = std::min(ymin, v.y()), ymax = std::max(ymax, v.y());
+        for (int k = 0; k < depthCount; ++k) {
+            // Levels strictly inside (ymin, ymax), plus an irrational-ish offset so no level sits on a vertex row.
+            const double h = ymin + (ymax - ymin) * (k + 0.5 + 0.0137) / depthCount;
+            const OracleMoments sub = oracleSubmergedMoments(posed, mesh.triangles, h);
+            const btFlatWaterSurface water(h);
+            const HydrostaticsResult r =
+                methodUsesTexture(method)
+                    ? sampledHydrostatics(samples, pose, water, 0.0, 1000.0, 9.81, pose * dry.centre, ws)
+                    : clippedHydrostatics(mesh, pose, water, 0.0, 1000.0, 9.81, pose * dry.centre);
+            rep.sub_volume_pct =
+                std::max(rep.sub_volume_pct, 100 * std::fabs(r.submerged_volume - sub.volume) / exact.volume);
+            if (sub.volume > 0.01 * exact.volume)
+                rep.cob_pct_diag =
+                    std::max(rep.cob_pct_diag, 100 * (r.centre_of_buoyancy - sub.centroid).norm() / diag);
+            ++rep.poses;
+        }
+    }
+    return rep;
+}
+
+std::string describe(const AccuracyReport& r) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "%s %d^2 (%zu samples, %s UVs): dry V %.3g %%, centre %.3g %% diag, inertia %.3g %%, "
+                  "submerged V %.3g %%, CoB %.3g %% diag over %d poses",
+                  r.method.c_str(), r.texture, r.samples, r.generated_uvs ? "generated" : "model", r.dry_volume_pct,
+                  r.centre_pct_diag, r.inertia_pct, r.sub_volume_pct, r.cob_pct_diag, r.poses);
+    return buf;
+}
+
+}  // namespace buoyancy_test
