@@ -5,6 +5,7 @@
 
 #include "cli/CliErrors.h"
 #include "cli/HydrostaticsCommand.h"
+#include "cli/RunCommand.h"
 
 #include <CLI/CLI.hpp>
 
@@ -19,6 +20,8 @@ int main(int argc, char** argv) {
 
     HydrostaticsOptions hydro;
     addHydrostaticsCommand(app, hydro);
+    RunOptions run;
+    addRunCommand(app, run);
 
     // CLI11 only says "A subcommand is required" for a misspelt one: name it.
     if (argc > 1 && argv[1][0] != '-' && app.get_subcommands(std::function<bool(CLI::App*)>([&](CLI::App* s) { return s->get_name() == argv[1]; })).empty()) {
@@ -40,6 +43,7 @@ int main(int argc, char** argv) {
 
     try {
         if (app.got_subcommand("hydrostatics")) return runHydrostatics(hydro);
+        if (app.got_subcommand("run")) return runScene(run);
     } catch (const UsageError& e) {
         std::cerr << "error: " << e.what() << '\n';
         return kExitBadInput;

@@ -106,7 +106,10 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     const btWaterSurface* water = m_world->getWater();
     if (!water || !(dt > 0) || m_body->getInvMass() == btScalar(0)) return;
     const bool waves = water->isTimeVarying();
-    if (!m_body->isActive() && !waves) return;  // calm water: a sleeping body stays asleep
+    if (!m_body->isActive() && !waves) {  // calm water: a sleeping body stays asleep
+        m_needsPrime = true;
+        return;
+    }
 
     const double time = m_world->getTime();
     const double rho = m_world->getFluidDensity();
@@ -120,6 +123,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     double lo = 0, hi = 0;
     water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
     if (bc.y() - br >= hi) {
+        m_needsPrime = false;  // dry: the missed kick was zero
         m_result = btBuoyancyResult();
         m_result.time = time;
         return;
@@ -192,8 +196,14 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     dragF *= s;
     dragT *= s;
 
-    const Eigen::Vector3d linearImpulse = (m / meff) * ((h.force + dragF - ma * gravityAcc) * dt);
-    const Eigen::Vector3d angularImpulse = (h.torque + dragT) * dt;
+    // Priming: the body's velocity is meant as the velocity after every kick at its current pose, but in
+    // the first substep after creation or wake-up Bullet applied gravity (and integrated) with no buoyancy
+    // kick for the starting pose. Give that missed hydrostatic kick once (evaluated at the current pose),
+    // else a neutrally buoyant body keeps the −g·dt it got and drifts (DESIGN-NOTES 3, symplectic Euler).
+    const double prime = m_needsPrime ? 2.0 : 1.0;
+    const Eigen::Vector3d linearImpulse =
+        (m / meff) * ((prime * (h.force - ma * gravityAcc) + dragF) * dt);
+    const Eigen::Vector3d angularImpulse = (prime * h.torque + dragT) * dt;
 
     m_result.submergedVolume = h.submerged_volume;
     m_result.centreOfBuoyancy = toBullet(h.centre_of_buoyancy);
@@ -213,6 +223,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     m_body->applyCentralImpulse(toBullet(linearImpulse));
     m_body->applyTorqueImpulse(toBullet(angularImpulse));
     m_result.applied = true;
+    m_needsPrime = false;
 }
 
 void btBuoyancyAction::debugDraw(btIDebugDraw* debugDrawer) {

@@ -95,6 +95,9 @@ private:
     btBuoyancyResult m_result;
     std::uint64_t m_lastSubstep = 0;
     std::uint64_t m_rejected = 0;
+    /// True until the first hydrostatic kick after creation or sleep: Bullet has already applied gravity for
+    /// a substep whose buoyancy kick (at the starting pose) was never given; see updateAction.
+    bool m_needsPrime = true;
     // Workspace sized once (no allocation per substep).
     buoyancy::SampleWorkspace m_ws;
     std::vector<double> m_ux, m_uy, m_uz;
