@@ -455,7 +455,8 @@ std::vector<Eigen::Vector2d> generateAtlas(const TriangleMesh& mesh, int texture
     std::size_t fewestCharts = 0;
     for (double cone : kConesDeg) {
         Packing p;
-        p.charts = buildCharts(mesh, facts, adj, cone);
+        // Charts much longer than the atlas is wide in metres cap the scale: split them up front.
+        p.charts = splitLongCharts(buildCharts(mesh, facts, adj, cone), adj, 0.5 * std::sqrt(totalArea), T);
         if (fewestCharts == 0 || p.charts.size() < fewestCharts) fewestCharts = p.charts.size();
         // A narrower cone only matters when it reaches kMinScaleRatio of the widest cone's scale.
         const double floorScale = candidates.empty() ? 0.0 : kMinScaleRatio * candidates.front().scale;
