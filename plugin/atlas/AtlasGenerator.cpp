@@ -191,10 +191,10 @@ void rebox(Chart& c) {
 
 /// Split every chart whose longer bounding-box side exceeds `maxSide` (m) into slabs across that side,
 /// each slab cut further into its edge-connected pieces (a chart must be connected: the packer keeps a
-/// texel of gap only between charts). A piece of a valid flat chart is valid, so nothing is re-flattened.
+/// texel of gap only between charts). A piece of a valid flat chart is valid: it is only rescaled.
 /// Long charts (e.g. strips along a slender body) otherwise cap the uniform scale at N / their length.
-std::vector<Chart> splitLongCharts(std::vector<Chart> charts, const TriangleAdjacency& adj, double maxSide,
-                                   std::size_t triangleCount) {
+std::vector<Chart> splitLongCharts(std::vector<Chart> charts, const TriangleAdjacency& adj, const MeshFacts& facts,
+                                   double maxSide, std::size_t triangleCount) {
     std::vector<Chart> out;
     std::vector<int> pieceKey(triangleCount, -1);   // slab id of a triangle of the chart being split
     std::vector<std::uint32_t> local(triangleCount); // its index inside that chart
@@ -230,6 +230,14 @@ std::vector<Chart> splitLongCharts(std::vector<Chart> charts, const TriangleAdja
                     queue.push_back(n);
                 }
             }
+            // Same texel density in every chart: the piece's flat area equals its 3D area again.
+            double flatArea = 0, area3 = 0;
+            for (std::size_t k = 0; k < piece.tris.size(); ++k) {
+                flatArea += 0.5 * cross2(piece.corners[3 * k], piece.corners[3 * k + 1], piece.corners[3 * k + 2]);
+                area3 += facts.area[piece.tris[k]];
+            }
+            const double scale = flatArea > 0 && area3 > 0 ? std::sqrt(area3 / flatArea) : 1.0;
+            for (Eigen::Vector2d& q : piece.corners) q *= scale;
             rebox(piece);
             out.push_back(std::move(piece));
         }
@@ -456,7 +464,7 @@ std::vector<Eigen::Vector2d> generateAtlas(const TriangleMesh& mesh, int texture
     for (double cone : kConesDeg) {
         Packing p;
         // Charts much longer than the atlas is wide in metres cap the scale: split them up front.
-        p.charts = splitLongCharts(buildCharts(mesh, facts, adj, cone), adj, 0.5 * std::sqrt(totalArea), T);
+        p.charts = splitLongCharts(buildCharts(mesh, facts, adj, cone), adj, facts, 0.5 * std::sqrt(totalArea), T);
         if (fewestCharts == 0 || p.charts.size() < fewestCharts) fewestCharts = p.charts.size();
         // A narrower cone only matters when it reaches kMinScaleRatio of the widest cone's scale.
         const double floorScale = candidates.empty() ? 0.0 : kMinScaleRatio * candidates.front().scale;
@@ -468,7 +476,7 @@ std::vector<Eigen::Vector2d> generateAtlas(const TriangleMesh& mesh, int texture
         if (longest * p.scale >= 0.3 * N) {
             for (double part : {0.5, 0.25, 0.125}) {
                 Packing trial;
-                trial.charts = splitLongCharts(p.charts, adj, part * longest, T);
+                trial.charts = splitLongCharts(p.charts, adj, facts, part * longest, T);
                 if (packAtLargestScale(trial, N, totalArea, true) && trial.scale > p.scale) p = std::move(trial);
             }
         }

@@ -4,6 +4,8 @@
 #include "oracles/OracleMeshes.h"
 
 #include "bake/BakeTestMeshes.h"
+#include "bake/BakeSamples.h"
+#include "integrals/MassProperties.h"
 
 #include <catch2/catch.hpp>
 
@@ -179,8 +181,10 @@ TEST_CASE("generated atlas: inside [0,1], no overlap, one-texel gap, uniform tex
             }
             const double ratio0 = uvArea[0] / area[0];
             for (int k = 1; k < charts; ++k) CHECK(uvArea[k] / area[k] == Approx(ratio0).epsilon(1e-9));
-            // Most of the texture is used (measured 0.34–0.49 at 128 for these meshes; 0.25 is the floor).
-            CHECK(used > 0.25);
+            // A fair part of the texture is used. Near-coplanar (10° cone) charts are preferred while they keep
+            // 0.6 of the wide-cone scale, i.e. 0.36 of its fill, so the fill can be low on coarse curved meshes
+            // (measured 0.10 for the cylinder at 64, 0.21–0.58 at 128).
+            CHECK(used > 0.08);
             // And the library's own check accepts the result.
             const UvLayoutCheck check = [&] {
                 TriangleMesh withUv = c.mesh;
@@ -302,4 +306,32 @@ TEST_CASE("chooseUvLayout keeps valid model UVs and generates otherwise", "[atla
     l = chooseUvLayout(buoyancy_test::toTriangleMesh(buoyancy_test::oracleSphere(1, 16, 8)), 64);
     CHECK(l.generated);
     CHECK(l.reasons == std::vector<std::string>{"no UVs"});
+}
+
+TEST_CASE("generated atlas: slender body keeps a dense atlas and an exact dry volume", "[atlas]") {
+    // A cylinder 40 times longer than wide (like assimp's animation_with_skeleton.fbx, where long strip
+    // charts once capped the scale: 1626 samples at 128², dry volume off by 1.4 %).
+    const TriangleMesh rod = buoyancy_test::toTriangleMesh(buoyancy_test::oracleCylinder(0.1, 8.0, 48));
+    const int N = 128;
+    const std::vector<Eigen::Vector2d> uv = generateAtlas(rod, N);
+    CHECK(countOverlappingPairs(uv) == 0);
+    CHECK(chartsHaveTexelGap(rod, uv, N));
+    double used = 0;
+    for (std::size_t t = 0; t < rod.triangles.size(); ++t) {
+        const Tri2 s = uvTri(uv, t);
+        used += 0.5 * std::abs((s[1] - s[0]).x() * (s[2] - s[0]).y() - (s[1] - s[0]).y() * (s[2] - s[0]).x());
+    }
+    INFO("fill " << used);
+    // This rod's sides are 96 sliver triangles 8 m long and 1.3 cm wide, one chart each at best: a
+    // triangle's length caps the scale at N/8 texels per metre and the gap doubles each sliver's width, so
+    // no layout reaches much more than 1.5 % fill at 128 (measured 1.4 %; 7.9 % at 512, the length bound).
+    CHECK(used > 0.012);
+    // Exact volume of the polyhedron by the divergence theorem, computed here: V = Σ a·(b×c) / 6.
+    double exact = 0;
+    for (std::size_t t = 0; t < rod.triangles.size(); ++t)
+        exact += rod.corner(t, 0).dot(rod.corner(t, 1).cross(rod.corner(t, 2))) / 6;
+    const SurfaceSamples samples = bakeSurfaceSamples(rod, uv, N, BakeMethod::ExactCoverage);
+    const MassProperties dry = solidMassProperties(samples, 1.0);
+    INFO(samples.size() << " samples, volume " << dry.volume << " vs " << exact);
+    CHECK(std::abs(dry.volume - exact) <= 3e-4 * exact);  // goal 0.1 %; near-coplanar charts give ~0 here
 }

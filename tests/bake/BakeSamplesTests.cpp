@@ -144,11 +144,17 @@ TEST_CASE("exact coverage with a generated atlas: volume of closed meshes", "[ba
         CHECK(got.A.norm() <= 1e-9 * ref.area);
         CHECK(std::abs(got.area - ref.area) <= 1e-9 * ref.area);
         CHECK(std::abs(got.volume - ref.volume) <= c.tol * std::abs(ref.volume));
-        // O(h²) convergence: doubling N divides the error by about 4 (at least by 3 here).
-        if (c.tol > 1e-9) {
+        // O(h²) convergence: doubling N divides the error by about 4 (at least by 3 here) — unless the atlas
+        // already made the volume exact at 128² (charts of coplanar triangles), when it must stay exact.
+        const double err128 = std::abs(got.volume - ref.volume);
+        if (c.tol > 1e-9 && err128 <= 1e-12 * std::abs(ref.volume)) {
             const std::vector<Eigen::Vector2d> uvs2 = generateAtlas(mesh, 256);
             const SampleSums got2 = sampleSums(bakeSurfaceSamples(mesh, uvs2, 256, BakeMethod::ExactCoverage));
-            CHECK(std::abs(got2.volume - ref.volume) < std::abs(got.volume - ref.volume) / 3);
+            CHECK(std::abs(got2.volume - ref.volume) <= 1e-12 * std::abs(ref.volume));
+        } else if (c.tol > 1e-9) {
+            const std::vector<Eigen::Vector2d> uvs2 = generateAtlas(mesh, 256);
+            const SampleSums got2 = sampleSums(bakeSurfaceSamples(mesh, uvs2, 256, BakeMethod::ExactCoverage));
+            CHECK(std::abs(got2.volume - ref.volume) < err128 / 3);
         }
     }
 }

@@ -1,0 +1,325 @@
+// Hard cases (issue 4, DESIGN-NOTES 6 items 1–3): extreme density ratios and time steps, a 100:1 plank,
+// drops, bodies starting submerged or above the water, a light body released deep, and a seeded property
+// test over random poses, velocities and densities. Each must stay finite and bounded and end at rest
+// (floating at its analytic draft, or on the ground when it sinks).
+#include "bullet/BulletTestWorld.h"
+#include "mesh/PrimitiveMeshes.h"
+#include "oracles/PolyhedralOracle.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+using namespace buoyancy_test;
+
+namespace {
+
+/// What happened to body 0 during a run.
+struct Track {
+    bool finite = true;
+    double maxSpeed = 0;      ///< m/s
+    double maxOmega = 0;      ///< rad/s
+    double maxY = -1e300;     ///< highest COM, m
+    double minY = 1e300;      ///< lowest COM, m
+    double maxYAfter = -1e300; ///< highest COM after the first time it was below `afterBelow`
+    double speed = 0, omega = 0, y = 0; ///< at the end
+    btTransform last;
+};
+
+bool finiteVec(const btVector3& v) {
+    return std::isfinite(double(v.x())) && std::isfinite(double(v.y())) && std::isfinite(double(v.z()));
+}
+
+/// Step frames of n substeps of dt for `seconds`, recording body i after every frame.
+Track runTracked(BulletTestWorld& w, double seconds, int n, double dt, std::size_t i = 0, double afterBelow = -1e300) {
+    Track tr;
+    const int frames = static_cast<int>(std::ceil(seconds / (n * dt) - 1e-9));
+    bool below = false;
+    for (int f = 0; f < frames; ++f) {
+        w.step(1, n, dt);
+        const btRigidBody* rb = w.rigid(i);
+        const btTransform& t = rb->getWorldTransform();
+        const bool ok = finiteVec(t.getOrigin()) && finiteVec(t.getBasis()[0]) && finiteVec(t.getBasis()[1]) &&
+                        finiteVec(t.getBasis()[2]) && finiteVec(rb->getLinearVelocity()) &&
+                        finiteVec(rb->getAngularVelocity());
+        if (!ok) {
+            tr.finite = false;
+            return tr;
+        }
+        const double y = double(t.getOrigin().y());
+        tr.maxSpeed = std::max(tr.maxSpeed, double(rb->getLinearVelocity().length()));
+        tr.maxOmega = std::max(tr.maxOmega, double(rb->getAngularVelocity().length()));
+        tr.maxY = std::max(tr.maxY, y);
+        tr.minY = std::min(tr.minY, y);
+        if (y < afterBelow) below = true;
+        if (below) tr.maxYAfter = std::max(tr.maxYAfter, y);
+    }
+    const btRigidBody* rb = w.rigid(i);
+    tr.speed = double(rb->getLinearVelocity().length());
+    tr.omega = double(rb->getAngularVelocity().length());
+    tr.y = double(rb->getCenterOfMassPosition().y());
+    tr.last = w.body(i).getMeshWorldTransform();
+    return tr;
+}
+
+btBuoyancySettings exactMesh() {
+    btBuoyancySettings bs;
+    bs.method = btBuoyancyMethod::ExactMesh;
+    return bs;
+}
+
+/// Free-fall speed after falling from height h, m/s: the bound on any speed reached by a body dropped
+/// from h (drag and buoyancy only take energy away before it enters the water).
+double fallSpeed(double h) { return std::sqrt(2 * 9.81 * std::max(h, 0.0)); }
+
+}  // namespace
+
+TEST_CASE("hard: density ratios 0.01 and 20", "[bullet][hard]") {
+    const double c = 0.5;
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(c, c, c), exactMesh());
+    SECTION("s = 0.01 floats at its draft") {
+        BulletTestWorld w;
+        btBuoyantBodySettings body;
+        body.density = 10;
+        w.add(shape, body, makePose(btVector3(0, 0.5, 0)), exactMesh());
+        const Track tr = runTracked(w, 20, 4, 1.0 / 240);
+        const double yTheory = c / 2 - 0.01 * c;
+        std::printf("hard s=0.01: max speed %.3f m/s, max y %.3f, final y %.5f (theory %.5f), speed %.2e\n",
+                    tr.maxSpeed, tr.maxY, tr.y, yTheory, tr.speed);
+        REQUIRE(tr.finite);
+        CHECK(tr.maxSpeed < fallSpeed(0.5 - yTheory) * 1.01 + 0.01);
+        CHECK(tr.maxY <= 0.5 + 1e-6);
+        CHECK(std::abs(tr.y - yTheory) < 0.005 * c);
+        CHECK(tr.speed < 0.01);
+    }
+    SECTION("a 7 cm box at s = 0.01 and 60 Hz (s c ~ g dt^2 / 4, DESIGN-NOTES 2.7)") {
+        const double cs = 0.07;
+        auto small = btBuoyancyShape::create(buoyancy::makeBoxMesh(cs, cs, cs), exactMesh());
+        BulletTestWorld w;
+        btBuoyantBodySettings body;
+        body.density = 10;
+        w.add(small, body, makePose(btVector3(0, 0.1, 0), btVector3(1, 0, 1), 20), exactMesh());
+        const Track tr = runTracked(w, 20, 1, 1.0 / 60);
+        std::printf("hard 7 cm s=0.01 @60Hz: max speed %.3f m/s, max y %.3f, final y %.5f, speed %.2e\n", tr.maxSpeed,
+                    tr.maxY, tr.y, tr.speed);
+        REQUIRE(tr.finite);
+        CHECK(tr.maxSpeed < 5.0);
+        CHECK(tr.maxY < 0.2);
+        CHECK(tr.y > 0 - 1e-3);  // floats (its centre can only be above the water line at s = 0.01)
+        CHECK(tr.y < cs);
+        CHECK(tr.speed < 0.02);
+    }
+    SECTION("s = 20 sinks to the ground and stays") {
+        BulletTestWorld w;
+        w.addGround(-5);
+        btBuoyantBodySettings body;
+        body.density = 20000;
+        w.add(shape, body, makePose(btVector3(0, 0.5, 0), btVector3(1, 1, 0), 30), exactMesh());
+        const Track tr = runTracked(w, 15, 4, 1.0 / 240);
+        // Oracle: fully submerged terminal velocity v_t = sqrt(2 (m − ρV) g / (ρ C_d A)) with A at most the
+        // box's largest silhouette (√3 c² for a cube); free fall of 0.5 m before the water adds at most fallSpeed.
+        const double m = w.body(0).getMass(), V = c * c * c;
+        const double vtMin = std::sqrt(2 * (m - 1000 * V) * 9.81 / (1000 * 1.0 * std::sqrt(3.0) * c * c));
+        std::printf("hard s=20: max speed %.3f m/s (terminal >= %.3f), final centre y %.4f (ground -5 + %.2f), speed %.2e\n",
+                    tr.maxSpeed, vtMin, tr.y, c / 2, tr.speed);
+        REQUIRE(tr.finite);
+        CHECK(tr.maxSpeed < std::max(vtMin * 1.5, fallSpeed(5.5)));
+        CHECK(tr.y > -5 + c / 2 - 0.02);
+        CHECK(tr.y < -5 + c / 2 + 0.02);
+        CHECK(tr.speed < 0.01);
+    }
+}
+
+TEST_CASE("hard: time steps 1/30 to 1/1000 s", "[bullet][hard]") {
+    const double a = 2, c = 0.4, b = 1, s = 0.5;
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(a, c, b), exactMesh());
+    const double yTheory = c / 2 - s * c;
+    for (double hz : {30.0, 60.0, 240.0, 1000.0}) {
+        BulletTestWorld w;
+        btBuoyantBodySettings body;
+        body.density = 1000 * s;
+        // Dropped from 0.5 m above its equilibrium with a 15° heel.
+        w.add(shape, body, makePose(btVector3(0, btScalar(yTheory + 0.5), 0), btVector3(1, 0, 0.2), 15), exactMesh());
+        const auto t0 = std::chrono::steady_clock::now();
+        const Track tr = runTracked(w, 20, 1, 1.0 / hz);
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        std::printf("hard dt=1/%g: max speed %.3f, max y %.4f, min y %.4f, final y %.5f (theory %.5f), tilt %.3f deg, "
+                    "speed %.2e, %.0f ms\n",
+                    hz, tr.maxSpeed, tr.maxY, tr.minY, tr.y, yTheory, tiltDegrees(tr.last), tr.speed, ms);
+        REQUIRE(tr.finite);
+        CHECK(tr.maxSpeed < fallSpeed(0.5) + 1.0);
+        CHECK(tr.maxY < yTheory + 0.5 + 1e-3);
+        CHECK(std::abs(tr.y - yTheory) < 0.005 * c);
+        CHECK(tiltDegrees(tr.last) < 1.0);
+        CHECK(tr.speed < 0.01);
+    }
+}
+
+TEST_CASE("hard: a 100:1 plank", "[bullet][hard]") {
+    const double a = 5, c = 0.05, b = 0.5, s = 0.6;
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(a, c, b), exactMesh());
+    BulletTestWorld w;
+    btBuoyantBodySettings body;
+    body.density = 1000 * s;
+    w.add(shape, body, makePose(btVector3(0, 0.5, 0), btVector3(0.3, 0, 1), 10), exactMesh());
+    const Track tr = runTracked(w, 20, 4, 1.0 / 240);
+    const double yTheory = c / 2 - s * c;
+    std::printf("hard plank 100:1: max speed %.3f, max omega %.3f, final y %.5f (theory %.5f), tilt %.3f deg, speed %.2e\n",
+                tr.maxSpeed, tr.maxOmega, tr.y, yTheory, tiltDegrees(tr.last), tr.speed);
+    REQUIRE(tr.finite);
+    CHECK(tr.maxSpeed < fallSpeed(0.5 + a / 2) + 0.5);
+    CHECK(std::abs(tr.y - yTheory) < 0.005 * b);  // 0.5 % of its width: 2.5 mm (height is only 5 cm)
+    CHECK(tiltDegrees(tr.last) < 1.0);
+    CHECK(tr.speed < 0.01);
+}
+
+TEST_CASE("hard: dropped from 10 m, started above and fully under the water", "[bullet][hard]") {
+    const double R = 0.3, s = 0.5;
+    const auto mesh = buoyancy::makeSphereMesh(R, 32, 16);
+    auto shape = btBuoyancyShape::create(mesh, exactMesh());
+    for (double y0 : {10.0, 1.0, -3.0}) {
+        BulletTestWorld w;
+        btBuoyantBodySettings body;
+        body.density = 1000 * s;
+        w.add(shape, body, makePose(btVector3(0, btScalar(y0), 0)), exactMesh());
+        const Track tr = runTracked(w, 20, 4, 1.0 / 240, 0, -0.5 * R);
+        std::printf("hard start y=%.1f: max speed %.3f (free fall %.3f), min y %.3f, max y after entering %.3f, "
+                    "final y %.5f, speed %.2e\n",
+                    y0, tr.maxSpeed, fallSpeed(y0), tr.minY, tr.maxYAfter, tr.y, tr.speed);
+        REQUIRE(tr.finite);
+        // Nothing gains energy: speed below free fall from the start (plus 1 %), never higher than its start
+        // height, and (dropped) it does not bounce back to where it came from.
+        CHECK(tr.maxSpeed < 1.01 * fallSpeed(y0 + R) + 0.05);
+        CHECK(tr.maxY < std::max(y0, R) + 1e-3);
+        if (y0 > 0) CHECK(tr.maxYAfter < 0.5 * y0);
+        // Rest at the draft: s = 0.5 puts the centre on the water line (mesh volume symmetric about it).
+        CHECK(std::abs(tr.y) < 0.005 * 2 * R);
+        CHECK(tr.speed < 0.01);
+    }
+}
+
+TEST_CASE("hard: a light body released 5 m deep rises and is not flung (DESIGN-NOTES 6.1-2)", "[bullet][hard]") {
+    const double R = 0.3;
+    const auto mesh = buoyancy::makeSphereMesh(R, 32, 16);
+    auto shape = btBuoyancyShape::create(mesh, exactMesh());
+    const double V = oracleDryMoments(mesh.vertices, mesh.triangles).volume;
+    for (double s : {0.2, 0.05}) {
+        BulletTestWorld w;
+        btBuoyantBodySettings body;
+        body.density = 1000 * s;
+        w.add(shape, body, makePose(btVector3(0, -5, 0)), exactMesh());
+        const Track tr = runTracked(w, 25, 4, 1.0 / 240);
+        // Energy bound on the jump (any correct model is below it; a launched body is far above): the rise
+        // speed never exceeds the terminal velocity v_t = sqrt(2 (ρV − m) g / (ρ C_d A)) (drag C_d = 1 on
+        // the silhouette πR²); while emerging, buoyancy does at most ∫ρ g V_sub dy = ρ g V R of work (the
+        // mean of a sphere's submerged volume over its emergence is V/2) against m g 2R. So the centre
+        // rises at most v_t²/(2g) + R (ρV/m − 1) above the water line.
+        const double m = w.body(0).getMass();
+        const double vt = std::sqrt(2 * (1000 * V - m) * 9.81 / (1000 * 1.0 * M_PI * R * R));
+        const double bound = vt * vt / (2 * 9.81) + R * (1000 * V / m - 1);
+        // At rest: centre at the draft of the mesh's own volume (bisection on the oracle's exact cap).
+        const double level = oracleEquilibriumLevel(mesh.vertices, mesh.triangles, tr.last, m / 1000.0);
+        std::printf("hard deep s=%.2f: max rise speed %.3f (v_t %.3f), max centre y %.3f (bound %.3f), "
+                    "final y %.5f, oracle level error %.2e m, speed %.2e\n",
+                    s, tr.maxSpeed, vt, tr.maxY, bound, tr.y, level, tr.speed);
+        REQUIRE(tr.finite);
+        CHECK(tr.maxSpeed < 1.02 * vt);
+        CHECK(tr.maxY < bound);
+        CHECK(std::abs(level) < 0.005 * 2 * R);
+        CHECK(tr.speed < 0.01);
+    }
+}
+
+namespace {
+
+/// One random case of the property test; returns false (and prints it) when a property fails.
+struct CaseResult {
+    bool finite, bounded, rest;
+    double speed, maxSpeed;
+};
+
+CaseResult randomCase(std::mt19937& rng, const std::vector<std::shared_ptr<const btBuoyancyShape>>& shapes,
+                      const std::vector<double>& halfHeights, double seconds, int index) {
+    std::uniform_real_distribution<double> U(0, 1);
+    const std::size_t k = std::min(shapes.size() - 1, std::size_t(U(rng) * shapes.size()));
+    // Density ratio log-uniform in [0.02, 5].
+    const double s = std::exp(std::log(0.02) + U(rng) * (std::log(5.0) - std::log(0.02)));
+    const btVector3 p(btScalar(U(rng) * 2 - 1), btScalar(-3 + 6 * U(rng)), btScalar(U(rng) * 2 - 1));
+    const btVector3 axis(btScalar(U(rng) - 0.5), btScalar(U(rng) - 0.5), btScalar(U(rng) - 0.5) + btScalar(1e-3));
+    const double deg = 360 * U(rng);
+    const btVector3 v(btScalar(8 * U(rng) - 4), btScalar(8 * U(rng) - 4), btScalar(8 * U(rng) - 4));
+    const btVector3 om(btScalar(10 * U(rng) - 5), btScalar(10 * U(rng) - 5), btScalar(10 * U(rng) - 5));
+    const double hz = std::vector<double>{60, 120, 240}[std::min<std::size_t>(2, std::size_t(U(rng) * 3))];
+
+    BulletTestWorld w;
+    w.addGround(-4);
+    btBuoyantBodySettings body;
+    body.density = 1000 * s;
+    btBuoyancySettings bs;  // library defaults: drag, linear damping, added mass on
+    w.add(shapes[k], body, makePose(p, axis, deg), bs);
+    w.rigid(0)->setLinearVelocity(v);
+    w.rigid(0)->setAngularVelocity(om);
+    // Bounds: the initial mechanical energy plus the buoyancy work available (lifting the whole volume from
+    // the ground to the surface) caps the speed at sqrt(v0² + ω-energy + 2 g (4 + 3)/s) loosely; use a
+    // generous physical cap: sqrt(|v0|² + (R|ω0|)² + 2 g 7 (1 + 1/s)).
+    const double Rb = halfHeights[k];
+    const double vcap = std::sqrt(double(v.length2()) + Rb * Rb * double(om.length2()) + 2 * 9.81 * 7 * (1 + 1 / s));
+    const Track tr = runTracked(w, seconds, std::max(1, int(hz / 60)), 1.0 / hz);
+    CaseResult r{tr.finite, tr.finite && tr.maxSpeed < vcap && tr.maxY < 3 + vcap * vcap / (2 * 9.81) + Rb &&
+                                tr.minY > -4 - 1e-2,
+                 tr.finite && tr.speed < 0.05 && tr.omega < 0.2, tr.speed, tr.maxSpeed};
+    if (!r.finite || !r.bounded || !r.rest)
+        std::printf("property case %d FAILED: shape %zu s=%.4f p=(%.2f %.2f %.2f) v=(%.2f %.2f %.2f) w=(%.2f %.2f %.2f) "
+                    "%g Hz: finite %d, max speed %.3f (cap %.3f), y range [%.3f, %.3f], end speed %.3g omega %.3g\n",
+                    index, k, s, double(p.x()), double(p.y()), double(p.z()), double(v.x()), double(v.y()),
+                    double(v.z()), double(om.x()), double(om.y()), double(om.z()), hz, int(tr.finite), tr.maxSpeed,
+                    vcap, tr.minY, tr.maxY, tr.speed, tr.omega);
+    return r;
+}
+
+void propertyTest(int cases, std::uint32_t seed) {
+    std::vector<std::shared_ptr<const btBuoyancyShape>> shapes;
+    std::vector<double> radii;
+    const btBuoyancySettings bs;
+    shapes.push_back(btBuoyancyShape::create(buoyancy::makeBoxMesh(1.0, 0.4, 0.6), bs));
+    radii.push_back(0.6);
+    shapes.push_back(btBuoyancyShape::create(buoyancy::makeBoxMesh(0.3, 0.3, 0.3), bs));
+    radii.push_back(0.26);
+    shapes.push_back(btBuoyancyShape::create(buoyancy::makeSphereMesh(0.4, 16, 8), bs));
+    radii.push_back(0.4);
+    shapes.push_back(btBuoyancyShape::create(buoyancy::makeCylinderMesh(0.25, 1.2, 16), bs));
+    radii.push_back(0.65);
+    std::mt19937 rng(seed);
+    int notFinite = 0, unbounded = 0, notRest = 0;
+    double worstEnd = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < cases; ++i) {
+        const CaseResult r = randomCase(rng, shapes, radii, 20.0, i);
+        notFinite += !r.finite;
+        unbounded += !r.bounded;
+        notRest += !r.rest;
+        if (r.finite) worstEnd = std::max(worstEnd, r.speed);
+    }
+    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("property test: %d cases (seed %u): %d non-finite, %d unbounded, %d not at rest; worst final speed "
+                "%.3g m/s; %.2f s\n",
+                cases, seed, notFinite, unbounded, notRest, worstEnd, sec);
+    CHECK(notFinite == 0);
+    CHECK(unbounded == 0);
+    CHECK(notRest == 0);
+}
+
+}  // namespace
+
+TEST_CASE("property: random poses, velocities and densities stay finite, bounded and come to rest",
+          "[bullet][hard][property]") {
+    propertyTest(200, 12345u);
+}
+
+TEST_CASE("property (long): thousands of random cases", "[bullet][hard][property][long]") {
+    propertyTest(3000, 987654u);
+}
