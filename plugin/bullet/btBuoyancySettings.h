@@ -26,7 +26,7 @@ struct btBuoyancySettings {
     ///@name Integration method and level of detail
     btBuoyancyMethod method = btBuoyancyMethod::Auto; ///< see btBuoyancyMethod
     /// N of the N×N sample texture (sampled methods), 1..16384, typical 64–512; 0 = the library default for
-    /// the resolved method (buoyancy::defaultTextureSize; 256 when Auto picks exact-coverage).
+    /// the resolved method (buoyancy::defaultTextureSize; 512 when Auto picks exact-coverage).
     int textureSize = 0;
     bool preferModelUvs = true;         ///< sampled methods: use the model's UVs when they are a valid layout
 

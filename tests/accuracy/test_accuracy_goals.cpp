@@ -79,6 +79,22 @@ TEST_CASE("accuracy: exact-coverage 128 meets the texture-path goals on analytic
     for (const auto& m : analyticShapes()) checkTextureGoals(m);
 }
 
+TEST_CASE("accuracy: default settings on high-poly meshes (exact-coverage 512) meet the goals", "[accuracy]") {
+    // Above kDefaultExactMeshMaxTriangles the default switches to the texture path: these meshes take it.
+    const std::vector<NamedMesh> meshes = {{"sphere 192x96", makeSphereMesh(0.5, 192, 96)},
+                                           {"torus 160x64", makeTorusMesh(1.0, 0.3, 160, 64)}};
+    for (const auto& m : meshes) {
+        REQUIRE(m.mesh.triangleCount() > kDefaultExactMeshMaxTriangles);
+        auto r = measureAccuracy(m.mesh, BuoyancyMethod::Default, 0);
+        REQUIRE(r.method == "exact-coverage");
+        checkDefaultGoals(m);
+        // The same meshes with their own UVs removed: the generated atlas must do as well.
+        TriangleMesh noUv = m.mesh;
+        noUv.corner_uvs.clear();
+        checkDefaultGoals({m.name + " (no UVs)", noUv});
+    }
+}
+
 TEST_CASE("accuracy: default settings meet the goals on real models", "[accuracy]") {
     for (const auto& m : realModels()) checkDefaultGoals(m);
 }
