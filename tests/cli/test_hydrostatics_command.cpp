@@ -34,7 +34,10 @@ TEST_CASE("hydrostatics: half-submerged 2x1x1 box matches Archimedes", "[cli]") 
             CHECK(j["submerged"]["volume"].get<double>() == Approx(1.0).epsilon(tol));
             CHECK(j["submerged"]["centre_of_buoyancy"][1].get<double>() == Approx(-0.25).epsilon(10 * tol));
             CHECK(j["submerged"]["force"][1].get<double>() == Approx(1000 * 9.81).epsilon(tol));
-            CHECK(std::fabs(j["submerged"]["force"][0].get<double>()) < 1e-6 + 100 * tol);
+            // Horizontal force: zero by symmetry; the sampled methods' waterline error is O(h^2) (DESIGN-NOTES 2.4).
+            const double weight = 1000 * 9.81 * 1.0;
+            CHECK(std::fabs(j["submerged"]["force"][0].get<double>()) < (tol > 1e-9 ? 1e-3 : 1e-6) * weight);
+            CHECK(std::fabs(j["submerged"]["force"][2].get<double>()) < (tol > 1e-9 ? 1e-3 : 1e-6) * weight);
             CHECK(j["submerged"]["waterline_area"].get<double>() == Approx(2.0).epsilon(10 * tol));
             CHECK(j["mesh"]["triangles"].get<int>() == 12);
             CHECK(j["mesh"]["components"].get<int>() == 1);
