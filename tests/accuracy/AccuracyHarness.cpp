@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace buoyancy_test {
 
@@ -76,6 +77,19 @@ AccuracyReport measureAccuracy(const TriangleMesh& mesh, BuoyancyMethod requeste
         }
     }
     return rep;
+}
+
+void recordAccuracyRow(const std::string& mesh, std::size_t triangles, const std::string& label,
+                       const AccuracyReport& r) {
+    const char* path = std::getenv("BUOYANCY_ACCURACY_REPORT");
+    if (!path || !*path) return;
+    if (FILE* f = std::fopen(path, "a")) {
+        std::fprintf(f, "| %s | %zu | %s | %s | %d | %zu | %s | %.2g | %.2g | %.2g | %.2g | %.2g |\n", mesh.c_str(),
+                     triangles, label.c_str(), r.method.c_str(), r.texture, r.samples,
+                     r.generated_uvs ? "generated" : "model", r.dry_volume_pct, r.centre_pct_diag, r.inertia_pct,
+                     r.sub_volume_pct, r.cob_pct_diag);
+        std::fclose(f);
+    }
 }
 
 std::string describe(const AccuracyReport& r) {

@@ -30,6 +30,12 @@ struct AccuracyReport {
 AccuracyReport measureAccuracy(const buoyancy::TriangleMesh& mesh, buoyancy::BuoyancyMethod method, int texture,
                                int depthCount = 9);
 
+/// When the environment variable BUOYANCY_ACCURACY_REPORT names a file, append one Markdown table row
+/// "| mesh | triangles | label | method | N | samples | UVs | dry V % | centre % | inertia % | sub V % | CoB % |" to it
+/// (docs/accuracy.md is made this way: see scripts/accuracy-report.sh).
+void recordAccuracyRow(const std::string& mesh, std::size_t triangles, const std::string& label,
+                       const AccuracyReport& r);
+
 /// One line for logs: "exact-coverage 128² (9304 samples): dry V 0.0012 %, ...".
 std::string describe(const AccuracyReport& r);
 

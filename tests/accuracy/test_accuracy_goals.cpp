@@ -51,6 +51,7 @@ void checkDefaultGoals(const NamedMesh& m) {
     const auto r = measureAccuracy(m.mesh, BuoyancyMethod::Default, 0);
     INFO(m.name << ": " << describe(r));
     WARN(m.name << " default: " << describe(r));
+    buoyancy_test::recordAccuracyRow(m.name, m.mesh.triangleCount(), "default", r);
     CHECK(r.dry_volume_pct <= 0.01);
     CHECK(r.centre_pct_diag <= 0.1);
     CHECK(r.inertia_pct <= 0.5);
@@ -62,6 +63,7 @@ void checkTextureGoals(const NamedMesh& m) {
     const auto r = measureAccuracy(m.mesh, BuoyancyMethod::ExactCoverage, 128);
     INFO(m.name << ": " << describe(r));
     WARN(m.name << " texture path: " << describe(r));
+    buoyancy_test::recordAccuracyRow(m.name, m.mesh.triangleCount(), "texture path", r);
     CHECK(r.dry_volume_pct <= 0.1);
     CHECK(r.centre_pct_diag <= 0.5);
     CHECK(r.inertia_pct <= 1.0);
@@ -110,6 +112,7 @@ TEST_CASE("accuracy: the paper's texel-centre method at 256, 512, 1024 (report)"
         for (int n : {256, 512, 1024}) {
             const auto r = measureAccuracy(m.mesh, BuoyancyMethod::TexelCentre, n, 5);
             WARN(m.name << " texel-centre: " << describe(r));
+            buoyancy_test::recordAccuracyRow(m.name, m.mesh.triangleCount(), "paper", r);
             CHECK(r.dry_volume_pct < 100);  // sanity only: this test reports, the goals are for the methods above
         }
 }
