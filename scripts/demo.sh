@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# README command 1: install what is missing, build, run the main job (hydrostatics of the bundled boat hull).
+# README command 1: install what is missing, build, run the main job (a model floating in Gerstner waves).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh float
-model=bullet_examples/models/boat_hull.obj
+scene=bullet_examples/scenes/demo_boat_gerstner.json
+out=build/demo_boat_gerstner
 echo
-echo "== buoyancy hydrostatics $model --rotate 0 0 1 10 --translate 0 0.1 0"
-build/bin/buoyancy hydrostatics "$model" --rotate 0 0 1 10 --translate 0 0.1 0
+echo "== buoyancy run $scene --out $out   (the boat hull, a buoy, a crate and a log in Gerstner waves)"
+build/bin/buoyancy run "$scene" --out "$out"
 echo
-echo "== the same, as JSON"
-build/bin/buoyancy hydrostatics "$model" --rotate 0 0 1 10 --translate 0 0.1 0 --json
+echo "== summary of $out/trajectory.csv"
+python3 scripts/run_summary.py "$out"

@@ -11,6 +11,15 @@ PACKAGES=(
   libcli11-dev             # CLI11 command-line parsing
   nlohmann-json3-dev       # JSON (CLI output, scene files)
 )
+# `scripts/install-deps.sh --extra`: also what scripts/ci-extra.sh needs (clang + libFuzzer runtime for
+# fuzz/, llvm-symbolizer for sanitizer stack traces). The default run does not need them.
+if [ "${1:-}" = "--extra" ]; then
+  PACKAGES+=(
+    clang                  # clang 14: libFuzzer targets (fuzz/)
+    libclang-rt-14-dev     # libFuzzer + ASan/UBSan runtimes for clang
+    llvm                   # llvm-symbolizer: readable sanitizer stack traces
+  )
+fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

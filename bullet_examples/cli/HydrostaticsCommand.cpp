@@ -15,6 +15,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <stdexcept>
 #include <filesystem>
 #include <cstdio>
 #include <iostream>
@@ -129,7 +130,12 @@ int runHydrostatics(const HydrostaticsOptions& o) {
             mesh, layout.corner_uvs, texture,
             method == BuoyancyMethod::TexelCentre ? BakeMethod::TexelCentre : BakeMethod::ExactCoverage);
         sampleCount = samples.size();
-        dry = solidMassProperties(samples, 1.0);
+        try {
+            dry = solidMassProperties(samples, 1.0);
+        } catch (const std::invalid_argument& e) {  // issue 10 (fuzzing): a texture too coarse for the mesh
+            throw UsageError(o.mesh + ": texture " + std::to_string(texture) + " is too coarse for this mesh (" +
+                             e.what() + "); use a larger --texture");
+        }
         SampleWorkspace ws;
         wet = sampledHydrostatics(samples, pose, water, 0.0, o.water_density, o.gravity, pose * dry.centre, ws);
     } else {

@@ -10,6 +10,10 @@
 #include "mesh/MeshImport.h"
 #include "mesh/MeshRepair.h"
 #include "mesh/PrimitiveMeshes.h"
+#include "cli/SceneGraph.h"
+#include "cli/SceneWater.h"
+#include "graph/btFloodingAction.h"
+#include "water/btInteractiveWaterCoupler.h"
 #include "water/btWaterSurface.h"
 
 #include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
@@ -41,7 +45,7 @@ TriangleMesh sceneMesh(const SceneBody& b, std::size_t index, double importTimeo
     const std::string key = "bodies[" + std::to_string(index) + "].shape";
     try {
         if (s.type == "box") return makeBoxMesh(s.size.x(), s.size.y(), s.size.z());
-        if (s.type == "sphere") return makeSphereMesh(s.radius, s.resolution, std::max(4, s.resolution / 2));
+        if (s.type == "sphere") return makeSphereMesh(s.radius, s.resolution, std::max(4, s.resolution / 2 + 1));
         if (s.type == "cylinder") return makeCylinderMesh(s.radius, s.height, s.resolution);
         TriangleMesh mesh = importMeshInChildProcess(s.file, s.scale, importTimeout);
         prepareMesh(mesh, s.file);
@@ -58,14 +62,19 @@ struct SceneWorld {
     btDbvtBroadphase broadphase;
     btSequentialImpulseConstraintSolver solver;
     btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
-    std::unique_ptr<btFlatWaterSurface> water;
+    std::unique_ptr<btWaterSurface> water;
+    std::unique_ptr<btInteractiveWaterCoupler> waterCoupler;  // interactive water only, the last action
     std::unique_ptr<btBuoyancyWorld> buoyancy;
     std::vector<std::unique_ptr<btBuoyantBody>> bodies;
     std::vector<std::unique_ptr<btBuoyancyAction>> actions;  // null for fixed bodies
+    std::vector<std::unique_ptr<btFloodingAction>> floods;   // null without a water graph (issue 6)
     std::unique_ptr<btStaticPlaneShape> groundShape;
     std::unique_ptr<btRigidBody> ground;
 
     ~SceneWorld() {
+        if (waterCoupler) world.removeAction(waterCoupler.get());
+        for (auto& f : floods)
+            if (f) world.removeAction(f.get());
         for (auto& a : actions)
             if (a) world.removeAction(a.get());
         for (auto& b : bodies) world.removeRigidBody(b->getRigidBody());
@@ -86,9 +95,10 @@ void writeRows(std::FILE* f, double t, const Scene& scene, SceneWorld& w) {
         const btVector3 av = rb->getAngularVelocity();
         btBuoyancyResult r;
         if (w.actions[i]) r = w.actions[i]->getLastResult();
+        const double waterVolume = i < w.floods.size() && w.floods[i] ? w.floods[i]->getWaterVolume() : 0.0;
         const double values[] = {mesh.getOrigin().x(), mesh.getOrigin().y(), mesh.getOrigin().z(), q.x(), q.y(), q.z(),
                                  q.w(), c.x(), c.y(), c.z(), v.x(), v.y(), v.z(), av.x(), av.y(), av.z(),
-                                 r.submergedVolume, b.getMass(), 0.0,
+                                 r.submergedVolume, b.getMass(), waterVolume,
                                  r.buoyancyForce.x(), r.buoyancyForce.y(), r.buoyancyForce.z(),
                                  r.dragForce.x(), r.dragForce.y(), r.dragForce.z(),
                                  r.centreOfBuoyancy.x(), r.centreOfBuoyancy.y(), r.centreOfBuoyancy.z()};
@@ -120,15 +130,31 @@ int runScene(const RunOptions& options) {
         }
     }
 
+    // Water graphs and permeable samples (issue 6), also before anything runs.
+    std::vector<WaterGraph> graphs(scene.bodies.size());
+    std::vector<PermeableSamples> holes(scene.bodies.size());
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        const SceneFlooding& fl = scene.bodies[i].flooding;
+        if (!fl.enabled) continue;
+        try {
+            graphs[i] = buildSceneWaterGraph(fl, shapes[i]->getMesh());
+            holes[i] = buildScenePermeability(fl, graphs[i], shapes[i]->getDragSamples());
+        } catch (const std::exception& e) {
+            throw UsageError("bodies[" + std::to_string(i) + "].water_graph: " + e.what());
+        }
+    }
+
     SceneWorld w;
     w.world.setGravity(btVector3(btScalar(scene.gravity.x()), btScalar(scene.gravity.y()), btScalar(scene.gravity.z())));
     btGImpactCollisionAlgorithm::registerAlgorithm(&w.dispatcher);
-    w.water = std::make_unique<btFlatWaterSurface>(scene.waterHeight);
+    SceneWaterSurface sceneWater = makeSceneWater(scene);
+    w.water = std::move(sceneWater.surface);
     w.buoyancy = std::make_unique<btBuoyancyWorld>(w.water.get(), scene.waterDensity, -scene.gravity.y());
     if (scene.groundHeight) {
         w.groundShape = std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), btScalar(*scene.groundHeight));
         btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, w.groundShape.get());
         info.m_friction = 0.8;
+        info.m_rollingFriction = 0.05;  // a seabed: round bodies that sink stop rolling (docs/scene-format.md)
         w.ground = std::make_unique<btRigidBody>(info);
         w.world.addRigidBody(w.ground.get());
     }
@@ -154,9 +180,26 @@ int runScene(const RunOptions& options) {
                                              btScalar(b.angularVelocity.z())));
             w.actions.push_back(std::make_unique<btBuoyancyAction>(*w.bodies.back(), w.buoyancy.get(), b.buoyancy));
             w.world.addAction(w.actions.back().get());
+            if (b.flooding.enabled) {  // after the body's buoyancy action (the water clock is current)
+                try {
+                    w.floods.push_back(std::make_unique<btFloodingAction>(*w.bodies.back(), w.buoyancy.get(),
+                                                                          graphs[i], holes[i]));
+                } catch (const std::exception& e) {
+                    throw UsageError("bodies[" + std::to_string(i) + "].water_graph: " + e.what());
+                }
+                w.world.addAction(w.floods.back().get());
+            } else {
+                w.floods.push_back(nullptr);
+            }
         } else {
             w.actions.push_back(nullptr);
+            w.floods.push_back(nullptr);
         }
+    }
+
+    if (sceneWater.interactive) {  // after every body's action: Bullet calls actions in the order added
+        w.waterCoupler = std::make_unique<btInteractiveWaterCoupler>(sceneWater.interactive, w.buoyancy.get());
+        w.world.addAction(w.waterCoupler.get());
     }
 
     std::error_code ec;

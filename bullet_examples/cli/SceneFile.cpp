@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -145,7 +146,8 @@ SceneBody readBody(const Reader& r, const json& j, const std::string& key, std::
                    const std::string& directory) {
     r.requireObject(j, key);
     r.allowKeys(j, key, {"name", "shape", "density", "mass", "mass_model", "thickness", "position", "rotation",
-                         "linear_velocity", "angular_velocity", "buoyancy", "ballast", "fixed", "collision"});
+                         "linear_velocity", "angular_velocity", "buoyancy", "ballast", "fixed", "collision",
+                         "water_graph", "permeability"});
     SceneBody b;
     b.name = j.contains("name") ? r.string(j["name"], key + ".name") : "body" + std::to_string(index);
     if (b.name.empty()) r.fail(key + ".name", "must not be empty");
@@ -212,7 +214,151 @@ SceneBody readBody(const Reader& r, const json& j, const std::string& key, std::
         else if (c == "none") b.body.collision = btBuoyantCollision::None;
         else r.fail(key + ".collision", "unknown value \"" + c + "\" (hull, mesh or none)");
     }
+    b.flooding = readSceneFlooding(j, key, directory, [&](const std::string& k, const std::string& w) { r.fail(k, w); });
+    if (b.flooding.enabled && b.body.fixed) r.fail(key + ".water_graph", "a fixed body cannot hold water");
     return b;
+}
+
+// ---- The "water" block (issue 5; keys and defaults in docs/scene-format.md) ----
+
+/// [a, b]: two numbers in [lo, hi].
+Eigen::Vector2d vec2(const Reader& r, const json& j, const std::string& key, double lo, double hi) {
+    if (!j.is_array() || j.size() != 2) r.fail(key, "expected an array of 2 numbers");
+    return Eigen::Vector2d(r.number(j[0], key + "[0]", lo, hi), r.number(j[1], key + "[1]", lo, hi));
+}
+
+/// A non-zero horizontal direction [dx, dz].
+Eigen::Vector2d direction2(const Reader& r, const json& j, const std::string& key) {
+    const Eigen::Vector2d d = vec2(r, j, key, -kBig, kBig);
+    if (!(d.norm() > 0)) r.fail(key, "must not be [0, 0]");
+    return d.normalized();
+}
+
+/// Height grid CSV: one row per z sample, one column per x sample, comma-separated numbers; empty lines
+/// and lines starting with '#' are skipped; every row must have the same number of values.
+void readHeightCsv(const Reader& r, const std::string& path, const std::string& key, SceneWater& w) {
+    std::ifstream in(path);
+    if (!in) r.fail(key, "cannot read " + path);
+    std::string line;
+    int row = 0, lineNo = 0;
+    while (std::getline(in, line)) {
+        ++lineNo;
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || line[first] == '#') continue;
+        std::stringstream ls(line);
+        std::string cell;
+        int cols = 0;
+        while (std::getline(ls, cell, ',')) {
+            char* end = nullptr;
+            const double v = std::strtod(cell.c_str(), &end);
+            while (end && (*end == ' ' || *end == '\t' || *end == '\r')) ++end;
+            if (end == cell.c_str() || (end && *end != '\0') || !std::isfinite(v))
+                r.fail(key, path + " line " + std::to_string(lineNo) + ": \"" + cell + "\" is not a finite number");
+            w.gridHeights.push_back(v);
+            ++cols;
+        }
+        if (row == 0) w.gridNx = cols;
+        else if (cols != w.gridNx)
+            r.fail(key, path + " line " + std::to_string(lineNo) + ": " + std::to_string(cols) + " values, expected " +
+                            std::to_string(w.gridNx) + " like the first row");
+        ++row;
+    }
+    w.gridNz = row;
+    if (w.gridNx < 2 || w.gridNz < 2) r.fail(key, path + ": needs at least 2 rows of at least 2 values");
+}
+
+void readWater(const Reader& r, const json& w, Scene& s, const std::string& directory) {
+    r.requireObject(w, "water");
+    SceneWater& out = s.water;
+    out.type = w.contains("type") ? r.string(w["type"], "water.type") : "flat";
+    const std::string& t = out.type;
+    if (t == "flat") r.allowKeys(w, "water", {"type", "height", "density", "current"});
+    else if (t == "gerstner") r.allowKeys(w, "water", {"type", "height", "density", "waves"});
+    else if (t == "grid") r.allowKeys(w, "water", {"type", "density", "file", "origin", "spacing", "periodic"});
+    else if (t == "fft")
+        r.allowKeys(w, "water", {"type", "height", "density", "resolution", "patch_size", "wind_speed", "wind_direction",
+                                 "spectrum", "choppiness", "seed"});
+    else if (t == "interactive")
+        r.allowKeys(w, "water", {"type", "height", "density", "size", "centre", "resolution", "wave_speed", "damping"});
+    else r.fail("water.type", "unknown value \"" + t + "\" (flat, gerstner, grid, fft or interactive)");
+    if (w.contains("height")) s.waterHeight = r.number(w["height"], "water.height", -kBig, kBig);
+    if (w.contains("density")) s.waterDensity = r.number(w["density"], "water.density", 0.0, 1e5, true);
+    const double g = -s.gravity.y();
+
+    if (t == "flat") {
+        if (w.contains("current")) out.current = vec2(r, w["current"], "water.current", -kBig, kBig);
+    } else if (t == "gerstner") {
+        if (!w.contains("waves")) r.fail("water.waves", "missing (an array of waves)");
+        if (!w["waves"].is_array()) r.fail("water.waves", "expected an array");
+        for (std::size_t i = 0; i < w["waves"].size(); ++i) {
+            const json& jw = w["waves"][i];
+            const std::string key = "water.waves[" + std::to_string(i) + "]";
+            r.requireObject(jw, key);
+            r.allowKeys(jw, key, {"amplitude", "wavelength", "direction", "steepness", "phase"});
+            btGerstnerWave wave;
+            if (!jw.contains("amplitude")) r.fail(key + ".amplitude", "missing");
+            if (!jw.contains("wavelength")) r.fail(key + ".wavelength", "missing");
+            wave.amplitude = r.number(jw["amplitude"], key + ".amplitude", 0.0, kBig);
+            wave.wavelength = r.number(jw["wavelength"], key + ".wavelength", 0.0, kBig, true);
+            if (jw.contains("direction")) {
+                const Eigen::Vector2d d = direction2(r, jw["direction"], key + ".direction");
+                wave.directionX = d.x();
+                wave.directionZ = d.y();
+            }
+            wave.steepness = jw.contains("steepness") ? r.number(jw["steepness"], key + ".steepness", 0.0, kBig) : 0.5;
+            if (jw.contains("phase")) wave.phase = r.number(jw["phase"], key + ".phase", -kBig, kBig);
+            out.waves.push_back(wave);
+        }
+        try {  // the loop condition Σ Q A k < 1 (and every field) checked by the surface itself
+            btGerstnerWaterSurface check(out.waves, s.waterHeight, g > 0 ? g : 9.81);
+        } catch (const std::invalid_argument& e) {
+            r.fail("water", e.what());
+        }
+    } else if (t == "grid") {
+        if (!w.contains("file")) r.fail("water.file", "missing (a CSV of heights: rows = z, columns = x)");
+        std::filesystem::path p(r.string(w["file"], "water.file"));
+        if (p.is_relative()) p = std::filesystem::path(directory) / p;
+        out.gridFile = p.string();
+        if (!w.contains("spacing")) r.fail("water.spacing", "missing (distance between samples, m)");
+        out.gridSpacing = r.number(w["spacing"], "water.spacing", 0.0, kBig, true);
+        if (w.contains("origin")) out.gridOrigin = vec2(r, w["origin"], "water.origin", -kBig, kBig);
+        if (w.contains("periodic")) out.gridPeriodic = r.boolean(w["periodic"], "water.periodic");
+        readHeightCsv(r, out.gridFile, "water.file", out);
+    } else if (t == "fft") {
+        btFftOceanSettings& f = out.fft;
+        if (w.contains("resolution")) {
+            f.resolution = r.integer(w["resolution"], "water.resolution", 4, 4096);
+            if (f.resolution % 2) r.fail("water.resolution", "must be even");
+        }
+        if (w.contains("patch_size")) f.patchSize = r.number(w["patch_size"], "water.patch_size", 0.0, kBig, true);
+        if (w.contains("wind_speed")) f.windSpeed = r.number(w["wind_speed"], "water.wind_speed", 0.0, 200.0, true);
+        if (w.contains("wind_direction")) {
+            const Eigen::Vector2d d = direction2(r, w["wind_direction"], "water.wind_direction");
+            f.windDirectionX = d.x();
+            f.windDirectionZ = d.y();
+        }
+        if (w.contains("spectrum")) {
+            const std::string sp = r.string(w["spectrum"], "water.spectrum");
+            if (sp == "phillips") f.spectrum = btFftOceanSettings::Spectrum::Phillips;
+            else if (sp == "jonswap") f.spectrum = btFftOceanSettings::Spectrum::Jonswap;
+            else r.fail("water.spectrum", "unknown value \"" + sp + "\" (phillips or jonswap)");
+        }
+        if (w.contains("choppiness")) f.choppiness = r.number(w["choppiness"], "water.choppiness", 0.0, 10.0);
+        if (w.contains("seed")) f.seed = std::uint64_t(r.integer(w["seed"], "water.seed", 0, 2147483647));
+        f.height = s.waterHeight;
+        f.gravity = g > 0 ? g : 9.81;
+    } else if (t == "interactive") {
+        if (w.contains("size")) {
+            out.size = vec2(r, w["size"], "water.size", 0.0, kBig);
+            if (!(out.size.x() > 0) || !(out.size.y() > 0)) r.fail("water.size", "both extents must be > 0");
+        }
+        if (w.contains("centre")) out.centre = vec2(r, w["centre"], "water.centre", -kBig, kBig);
+        if (w.contains("resolution")) out.resolution = r.integer(w["resolution"], "water.resolution", 4, 4096);
+        if (w.contains("wave_speed")) out.waveSpeed = r.number(w["wave_speed"], "water.wave_speed", 0.0, 1e3, true);
+        if (w.contains("damping")) out.damping = r.number(w["damping"], "water.damping", 0.0, 1e3);
+        const double dx = out.size.x() / out.resolution;
+        if (out.size.y() / dx > 4096.5) r.fail("water.size", "more than 4096 cells along z at this resolution");
+    }
 }
 
 }  // namespace
@@ -222,7 +368,7 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
     json j;
     try {
         j = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers like 1e400 (issue 10)
         throw UsageError(sourceName + ": invalid JSON: " + e.what());
     }
     r.requireObject(j, "");
@@ -239,17 +385,7 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
     if (j.contains("substeps_per_frame")) s.substepsPerFrame = r.integer(j["substeps_per_frame"], "substeps_per_frame", 1, 1000);
     if (j.contains("duration")) s.duration = r.number(j["duration"], "duration", 0.0, 1e6);
     if (j.contains("output_interval")) s.outputInterval = r.number(j["output_interval"], "output_interval", 0.0, 1e6, true);
-    if (j.contains("water")) {
-        const json& w = j["water"];
-        r.requireObject(w, "water");
-        r.allowKeys(w, "water", {"type", "height", "density"});
-        if (w.contains("type")) {
-            const std::string t = r.string(w["type"], "water.type");
-            if (t != "flat") r.fail("water.type", "unknown value \"" + t + "\" (flat)");
-        }
-        if (w.contains("height")) s.waterHeight = r.number(w["height"], "water.height", -kBig, kBig);
-        if (w.contains("density")) s.waterDensity = r.number(w["density"], "water.density", 0.0, 1e5, true);
-    }
+    if (j.contains("water")) readWater(r, j["water"], s, directory);
     if (j.contains("ground")) {
         const json& g = j["ground"];
         r.requireObject(g, "ground");

@@ -6,6 +6,9 @@
 
 #include "bullet/btBuoyancySettings.h"
 #include "bullet/btBuoyantBodyBuilder.h"
+#include "water/btFftOceanSurface.h"
+#include "water/btGerstnerWaterSurface.h"
+#include "cli/SceneGraph.h"
 
 #include <Eigen/Core>
 #include <optional>
@@ -36,6 +39,27 @@ struct SceneBody {
     Eigen::Vector3d linearVelocity = Eigen::Vector3d::Zero();  ///< COM velocity, world, m/s
     Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero(); ///< world, rad/s
     btBuoyancySettings buoyancy;      ///< the "buoyancy" block (library defaults when absent)
+    SceneFlooding flooding;           ///< "water_graph" and "permeability" (issue 6, SceneGraph.h)
+};
+
+/// The "water" block: which surface and its parameters (docs/scene-format.md lists keys and defaults).
+/// Level and density live in Scene::waterHeight / Scene::waterDensity.
+struct SceneWater {
+    std::string type = "flat";                     ///< "flat", "gerstner", "grid", "fft", "interactive"
+    Eigen::Vector2d current = Eigen::Vector2d::Zero(); ///< flat: uniform current [vx, vz], m/s
+    std::vector<btGerstnerWave> waves;             ///< gerstner
+    std::string gridFile;                          ///< grid: CSV path (resolved), rows = z, columns = x
+    int gridNx = 0, gridNz = 0;                    ///< grid: samples along x, z
+    std::vector<double> gridHeights;               ///< grid: nx·nz heights, m, index j·nx + i
+    Eigen::Vector2d gridOrigin = Eigen::Vector2d::Zero(); ///< grid: world [x, z] of the first sample, m
+    double gridSpacing = 1.0;                      ///< grid: m
+    bool gridPeriodic = true;                      ///< grid: wrap (true) or clamp
+    btFftOceanSettings fft;                        ///< fft (height and gravity filled from the scene)
+    Eigen::Vector2d size = Eigen::Vector2d(20, 20); ///< interactive: extent [x, z], m
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero(); ///< interactive: world centre [x, z], m
+    int resolution = 128;                          ///< interactive: cells along x
+    double waveSpeed = 2.0;                        ///< interactive: c, m/s
+    double damping = 0.1;                          ///< interactive: γ, 1/s
 };
 
 /// A whole scene.
@@ -47,6 +71,7 @@ struct Scene {
     double outputInterval = 0.1;      ///< s
     double waterHeight = 0.0;         ///< flat water level, m
     double waterDensity = 1000.0;     ///< kg/m³
+    SceneWater water;                 ///< surface type and parameters
     std::optional<double> groundHeight; ///< static floor y = h
     std::vector<SceneBody> bodies;
     std::string directory;            ///< folder of the scene file (mesh paths are relative to it)

@@ -1,6 +1,7 @@
 #include "bullet/btBuoyancyAction.h"
 
 #include "bullet/btBulletConvert.h"
+#include "bullet/btBuoyancyInvariants.h"
 #include "bullet/btBuoyancyWorld.h"
 #include "bullet/btBuoyantBodyBuilder.h"
 #include "water/btWaterSurface.h"
@@ -28,6 +29,11 @@ btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBu
     m_ux.resize(n);
     m_uy.resize(n);
     m_uz.resize(n);
+    m_dragHalfSize.resize(n);
+    const buoyancy::SurfaceSamples& drag = m_shape->getDragSamples();
+    for (std::size_t i = 0; i < n; ++i) m_dragHalfSize[i] = 0.5 * std::sqrt(std::max(drag.area[i], 0.0));
+    m_baseLinearSleep = double(m_body->getLinearSleepingThreshold());
+    m_baseAngularSleep = double(m_body->getAngularSleepingThreshold());
     m_world->registerAction(this);
 }
 
@@ -65,12 +71,20 @@ void btBuoyancyAction::computeDrag(const Eigen::Vector3d& com, const Eigen::Vect
     Eigen::Vector3d uSum = Eigen::Vector3d::Zero();
     double areaSum = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        if (!(m_ws.wy[i] < m_ws.waterHeight[i])) continue;
+        // Wet fraction of the sample: a linear ramp over its vertical extent, so a shallow draft still gets drag
+        // from the samples it half wets (all-or-nothing by centre left a light box with no sideways drag at all).
+        // A horizontal piece has no vertical extent: wet by its centre.
+        const double an0 = std::sqrt(m_ws.wax[i] * m_ws.wax[i] + m_ws.way[i] * m_ws.way[i] + m_ws.waz[i] * m_ws.waz[i]);
+        const double ny = an0 > 0 ? m_ws.way[i] / an0 : 0.0;
+        const double halfV = m_dragHalfSize[i] * std::sqrt(std::max(0.0, 1.0 - ny * ny));
+        const double depth = m_ws.waterHeight[i] - m_ws.wy[i];
+        const double wet = halfV > 0 ? std::min(1.0, std::max(0.0, 0.5 + 0.5 * depth / halfV)) : (depth > 0 ? 1.0 : 0.0);
+        if (!(wet > 0)) continue;
         const Eigen::Vector3d r(m_ws.wx[i] - com.x(), m_ws.wy[i] - com.y(), m_ws.wz[i] - com.z());
         const Eigen::Vector3d u(m_ux[i], m_uy[i], m_uz[i]);
         const Eigen::Vector3d vi = v + w.cross(r) - u;
-        const Eigen::Vector3d A(m_ws.wax[i], m_ws.way[i], m_ws.waz[i]);
-        const double a = s.area[i];
+        const Eigen::Vector3d A = wet * Eigen::Vector3d(m_ws.wax[i], m_ws.way[i], m_ws.waz[i]);
+        const double a = wet * s.area[i];
         uSum += a * u;
         areaSum += a;
         Eigen::Vector3d f = Eigen::Vector3d::Zero();
@@ -93,18 +107,25 @@ void btBuoyancyAction::computeDrag(const Eigen::Vector3d& com, const Eigen::Vect
 
 void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) {
     const double dt = double(deltaTimeStep);
+    m_result.applied = false;
+    // A zero, negative or non-finite step applies nothing and leaves the water's clock alone (issue 10).
+    if (!(dt > 0) || !std::isfinite(dt)) return;
     m_world->beginSubstepIfNew(m_lastSubstep, dt);
 #ifndef NDEBUG
-    // Misuse check: an action whose body was removed from (or deleted out of) the world it runs in.
-    if (collisionWorld && collisionWorld->getCollisionObjectArray().findLinearSearch(m_body) ==
+    // Misuse check: an action whose body is in another world (a removed body has no broadphase handle and
+    // is skipped below).
+    if (collisionWorld && m_body->getBroadphaseHandle() &&
+        collisionWorld->getCollisionObjectArray().findLinearSearch(m_body) ==
                               collisionWorld->getCollisionObjectArray().size())
         btAssert(!"btBuoyancyAction: its body is not in the world; remove the action before the body");
 #else
     (void)collisionWorld;
 #endif
     m_result.applied = false;
+    // A body removed from its world while this action stays in it: do nothing until it is back (issue 10).
+    if (!m_body->getBroadphaseHandle()) return;
     const btWaterSurface* water = m_world->getWater();
-    if (!water || !(dt > 0) || m_body->getInvMass() == btScalar(0)) return;
+    if (!water || m_body->getInvMass() == btScalar(0)) return;
     const bool waves = water->isTimeVarying();
     if (!m_body->isActive() && !waves) {  // calm water: a sleeping body stays asleep
         m_needsPrime = true;
@@ -116,6 +137,12 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     const double g = m_world->getGravity();
     const Eigen::Isometry3d pose = toEigen(m_body->getWorldTransform() * getMeshInComFrame());
     const Eigen::Vector3d com = toEigen(m_body->getCenterOfMassPosition());
+    // A NaN/Inf pose (set by the user, or a body Bullet already lost) is refused here: nothing below may
+    // throw through Bullet's stepSimulation (issue 10: clippedHydrostatics threw invalid_argument).
+    if (!pose.matrix().allFinite() || !com.allFinite()) {
+        ++m_rejected;
+        return;
+    }
 
     // Whole body above the highest water point: nothing to do (DESIGN-NOTES 2.5).
     const Eigen::Vector3d bc = pose * m_shape->getBoundsCentre();
@@ -124,6 +151,8 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
     if (bc.y() - br >= hi) {
         m_needsPrime = false;  // dry: the missed kick was zero
+        m_hasLastCom = false;  // out of the water Bullet's own sleeping test is right again
+        m_body->setSleepingThresholds(btScalar(m_baseLinearSleep), btScalar(m_baseAngularSleep));
         m_result = btBuoyancyResult();
         m_result.time = time;
         return;
@@ -134,11 +163,16 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     buoyancy::HydrostaticsResult h;
     bool wsFilled = false;
     if (m_settings.buoyancyEnabled) {
-        if (method == btBuoyancyMethod::ExactMesh) {
-            h = buoyancy::clippedHydrostatics(m_shape->getMesh(), pose, *water, time, rho, g, com);
-        } else {
-            h = buoyancy::sampledHydrostatics(m_shape->getSamples(), pose, *water, time, rho, g, com, m_ws);
-            wsFilled = true;
+        try {  // never let an exception escape into Bullet's stepSimulation
+            if (method == btBuoyancyMethod::ExactMesh) {
+                h = buoyancy::clippedHydrostatics(m_shape->getMesh(), pose, *water, time, rho, g, com);
+            } else {
+                h = buoyancy::sampledHydrostatics(m_shape->getSamples(), pose, *water, time, rho, g, com, m_ws);
+                wsFilled = true;
+            }
+        } catch (const std::exception&) {
+            ++m_rejected;
+            return;
         }
     }
 
@@ -215,15 +249,29 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     m_result.waterlineArea = h.waterline_area;
     m_result.addedMass = ma;
     m_result.time = time;
-    // Never write NaN/Inf into a body (DESIGN-NOTES 3).
-    if (!linearImpulse.allFinite() || !angularImpulse.allFinite()) {
+    // Never write NaN/Inf into a body (DESIGN-NOTES 3): checked after rounding to btScalar (a finite double
+    // can overflow a float) and on the velocities the impulses would give.
+    const btVector3 J = toBullet(linearImpulse), L = toBullet(angularImpulse);
+    const btVector3 v1 = m_body->getLinearVelocity() + J * m_body->getInvMass() * m_body->getLinearFactor();
+    const btVector3 w1 = m_body->getAngularVelocity() + m_body->getInvInertiaTensorWorld() * L * m_body->getAngularFactor();
+    if (!linearImpulse.allFinite() || !angularImpulse.allFinite() || !toEigen(v1).allFinite() ||
+        !toEigen(w1).allFinite()) {
         ++m_rejected;
         return;
     }
-    m_body->applyCentralImpulse(toBullet(linearImpulse));
-    m_body->applyTorqueImpulse(toBullet(angularImpulse));
+    // Sleeping (see m_baseLinearSleep): at rest when the COM really moved less than the body's threshold over
+    // this substep and it turns slower than its angular threshold; Bullet then counts down to sleep as usual.
+    const bool atRest = m_hasLastCom && (com - m_lastCom).norm() < m_baseLinearSleep * dt &&
+                        toEigen(m_body->getAngularVelocity()).norm() < m_baseAngularSleep;
+    m_lastCom = com;
+    m_hasLastCom = true;
+    const btScalar open = atRest ? btScalar(1e6) : btScalar(0);
+    m_body->setSleepingThresholds(open, open);
+    m_body->applyCentralImpulse(J);
+    m_body->applyTorqueImpulse(L);
     m_result.applied = true;
     m_needsPrime = false;
+    BT_BUOYANCY_CHECK_BODY(*m_body);
 }
 
 void btBuoyancyAction::debugDraw(btIDebugDraw* debugDrawer) {

@@ -101,4 +101,17 @@ private:
     // Workspace sized once (no allocation per substep).
     buoyancy::SampleWorkspace m_ws;
     std::vector<double> m_ux, m_uy, m_uz;
+    /// Per drag sample: half its size, sqrt(area)/2, m; with the sample's tilt it gives the vertical half extent
+    /// over which drag ramps from dry to wet (DESIGN-NOTES 2.4's wet fraction, applied to drag only).
+    std::vector<double> m_dragHalfSize;
+    /// @name Sleeping: Bullet tests the stored velocity, which at rest on the water is +g·dt, not 0 (the kick for
+    /// the next substep comes after integration: symplectic Euler, DESIGN-NOTES 3). The action tests the COM's
+    /// real displacement over the substep against the body's own thresholds instead, and opens or closes
+    /// Bullet's thresholds accordingly.
+    ///@{
+    double m_baseLinearSleep = 0;   ///< the body's linear sleeping threshold when the action was made, m/s
+    double m_baseAngularSleep = 0;  ///< the body's angular sleeping threshold when the action was made, rad/s
+    Eigen::Vector3d m_lastCom = Eigen::Vector3d::Zero(); ///< COM after the previous wet substep, m
+    bool m_hasLastCom = false;      ///< m_lastCom is valid (the previous substep was wet and applied)
+    ///@}
 };

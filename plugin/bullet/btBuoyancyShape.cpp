@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace {
 
@@ -65,6 +66,16 @@ std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::create(buoyancy::Triangl
                                                                const btBuoyancySettings& settings) {
     settings.validate();
     if (mesh.triangleCount() == 0) throw std::invalid_argument("mesh: no triangles");
+    // A mesh that did not go through prepareMesh must not crash us (issue 10): indices and coordinates.
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        for (int k = 0; k < 3; ++k)
+            if (mesh.triangles[t][k] < 0 || std::size_t(mesh.triangles[t][k]) >= mesh.vertices.size())
+                throw std::invalid_argument("mesh: triangle " + std::to_string(t) + " has vertex index " +
+                                            std::to_string(mesh.triangles[t][k]) + " out of range (" +
+                                            std::to_string(mesh.vertices.size()) + " vertices)");
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+        if (!mesh.vertices[v].allFinite())
+            throw std::invalid_argument("mesh: vertex " + std::to_string(v) + " is not finite");
     std::shared_ptr<btBuoyancyShape> shape(new btBuoyancyShape());
     shape->m_method = btBuoyancyResolveMethod(settings, mesh.triangleCount());
     shape->m_mesh = std::move(mesh);

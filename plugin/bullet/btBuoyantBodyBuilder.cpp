@@ -11,6 +11,7 @@
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -22,6 +23,17 @@ void requireRange(double v, double lo, bool strict, const std::string& field) {
     if (!std::isfinite(v) || (strict ? !(v > lo) : !(v >= lo)))
         throw std::invalid_argument(field + ": must be a finite number " + (strict ? "> " : ">= ") +
                                     std::to_string(lo) + " (got " + std::to_string(v) + ")");
+}
+
+/// A pose Bullet can use: finite, with an orthonormal basis (no NaN, scale or shear reaches a body).
+void requireRigidTransform(const btTransform& t, const std::string& field) {
+    const btMatrix3x3& R = t.getBasis();
+    bool ok = std::isfinite(t.getOrigin().x()) && std::isfinite(t.getOrigin().y()) && std::isfinite(t.getOrigin().z());
+    for (int i = 0; i < 3 && ok; ++i)
+        for (int j = 0; j < 3 && ok; ++j) {
+            ok = std::isfinite(R[i][j]) && std::abs(double(R[i].dot(R[j])) - (i == j ? 1.0 : 0.0)) <= 1e-3;
+        }
+    if (!ok) throw std::invalid_argument(field + ": must be finite with an orthonormal rotation");
 }
 
 /// Parallel-axis term M(|d|² E − d dᵀ) (Steiner).
@@ -108,6 +120,7 @@ btBuoyantBody::btBuoyantBody(std::shared_ptr<const btBuoyancyShape> shape, const
     : m_shape(std::move(shape)), m_settings(settings) {
     if (!m_shape) throw std::invalid_argument("shape: null");
     m_settings.validate();
+    requireRigidTransform(meshWorldTransform, "meshWorldTransform");
     const buoyancy::TriangleMesh& mesh = m_shape->getMesh();
 
     btVector3 moments(0, 0, 0);
@@ -181,6 +194,15 @@ void btBuoyantBody::updateMassProperties(double mass, const Eigen::Vector3d& cen
     mp.mass = mass;
     mp.centre = centre;
     mp.inertia = 0.5 * (inertia + inertia.transpose());
+    if (mp.inertia.allFinite()) {  // non-finite input is refused by applyMassProperties
+        // A negative principal moment is not a rigid body: refuse it rather than clamp it (issue 10).
+        const Eigen::Vector3d moments = buoyancy::principalFrame(mp.inertia).moments;
+        if (moments.minCoeff() < -1e-9 * moments.cwiseAbs().maxCoeff()) {
+            std::ostringstream os;
+            os << "inertia: not positive semi-definite (smallest principal moment " << moments.minCoeff() << ")";
+            throw std::invalid_argument(os.str());
+        }
+    }
     btTransform meshInCom;
     btVector3 moments;
     applyMassProperties(mp, meshInCom, moments);  // throws before anything changes

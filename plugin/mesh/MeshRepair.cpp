@@ -443,6 +443,16 @@ MeshReport prepareMesh(TriangleMesh& mesh, const std::string& sourceName) {
         if (negative) ++report.cavities;
     }
 
+    // --- the whole must enclose a positive volume (issue 10, found by fuzzing: a cavity larger than its
+    // body, or a surface crossing itself, passed the checks above and failed later as an internal error) ---
+    {
+        double total = 0.0;
+        for (const Component& c : comps) total += c.flipped ? -c.volume : c.volume;
+        if (!(total > kFlatRelative * diag * diag * diag))
+            throw fail("encloses no positive volume: the components add up to " + fmt(total) +
+                       " m^3 (a cavity larger than its body, or a surface crossing itself)");
+    }
+
     // --- components that intersect each other ---
     std::size_t intersecting = 0;
     std::string pairs;

@@ -1,0 +1,48 @@
+#pragma once
+/// @file btInteractiveWaterCoupler.h
+/// The two-way seam between btBuoyancyAction and btInteractiveWaterSurface: a btActionInterface added to
+/// the dynamics world AFTER the bodies' buoyancy actions (Bullet calls actions in the order added, once
+/// per substep). Each substep it reads every registered action's last result (displaced volume, centre of
+/// buoyancy, waterline area) and moves each body's displaced water out of its old footprint and into its
+/// new one (addVolumeChange), then steps the grid by dt. The actions' hot path is untouched: they only
+/// see a height field.
+///
+/// Usage:  btInteractiveWaterSurface water(20, 20, 128, 2.0, 0.1);  btBuoyancyWorld ctx(&water);
+///         ... add bodies and their actions ...;  btInteractiveWaterCoupler coupler(&water, &ctx);
+///         dynamicsWorld->addAction(&coupler);   // last
+
+#include <BulletDynamics/Dynamics/btActionInterface.h>
+
+#include <unordered_map>
+
+class btInteractiveWaterSurface;
+class btBuoyancyWorld;
+class btBuoyancyAction;
+
+/// Feeds bodies' displaced volumes into an interactive water grid and steps it once per substep.
+class btInteractiveWaterCoupler : public btActionInterface {
+public:
+    /// @param water  the grid (not owned); should be the surface of `world`
+    /// @param world  the buoyancy context whose registered actions disturb the water (not owned)
+    /// @throws std::invalid_argument for a null argument
+    /// @param coupling  fraction κ of each change of displaced volume that pushes the grid, (0, 1]. The body
+    ///                  reads the surface it depresses, a loop of gain ≈ κ per substep: κ = 1 is marginal
+    ///                  and unstable for footprints of a few cells; 0.25 (default) keeps it damped.
+    btInteractiveWaterCoupler(btInteractiveWaterSurface* water, const btBuoyancyWorld* world, double coupling = 0.25);
+
+    /// Once per substep: push the water by each body's change of displaced volume, then step the grid by dt.
+    void updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) override;
+    void debugDraw(btIDebugDraw*) override {}
+
+    /// Total volume the bodies currently displace (as last fed to the grid), m³.
+    double displacedVolume() const;
+
+private:
+    struct Footprint {
+        double x = 0, z = 0, volume = 0, radius = 0;
+    };
+    btInteractiveWaterSurface* m_water;
+    const btBuoyancyWorld* m_world;
+    double m_coupling;
+    std::unordered_map<const btBuoyancyAction*, Footprint> m_last;
+};

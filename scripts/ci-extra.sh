@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# The reliability part of CI (issue 10), run by .ci/run after scripts/test.sh:
+#   1. sanitizer build (AddressSanitizer + UndefinedBehaviorSanitizer, gcc, float) of every fast test
+#      (ctest -LE long; the install test is left out: it re-builds a consumer without sanitizer flags);
+#   2. the physics tests (labels integrals, bake, bullet, accuracy, water, reliability) with floating-point
+#      exceptions trapped (invalid, divide-by-zero, overflow; float Release build of scripts/test.sh);
+#   3. a short libFuzzer run of every target in fuzz/ (FUZZ_SECONDS per target, default 45).
+# Prints the time of each part. Build dirs: build-asan/, build-fuzz/ (and build/ from scripts/test.sh).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh --extra
+jobs=${JOBS:-2}
+t0=$SECONDS
+times=()
+lap() { times+=("$1: $((SECONDS - t0)) s"); t0=$SECONDS; }
+
+echo "== sanitizer build (ASan + UBSan)"
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBULLET_BUOYANCY_SANITIZE=ON >/dev/null
+cmake --build build-asan -j"$jobs"
+lap "sanitizer build"
+echo "== sanitizer tests"
+(cd build-asan && ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1 \
+   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+   ctest -LE long --output-on-failure -j"$jobs" --timeout 1800)
+lap "sanitizer tests"
+
+echo "== FPE tests (trap invalid, divide-by-zero, overflow) on the float Release build of scripts/test.sh"
+# tests/test_main.cpp turns the traps on when BULLET_BUOYANCY_TRAP_FP=1 (or when built with the CMake option
+# of that name), so the Release build of scripts/test.sh serves as the FPE build: no extra compile.
+[ -x build/bin/tests_reliability ] || bash scripts/build.sh float
+(cd build && BULLET_BUOYANCY_TRAP_FP=1 ctest -L 'integrals|bake|bullet|accuracy|water|reliability' \
+   --output-on-failure -j"$jobs" --timeout 1800)
+lap "FPE tests"
+
+echo "== short fuzz run"
+bash scripts/fuzz-run.sh "${FUZZ_SECONDS:-45}"
+lap "fuzz (build + run)"
+
+printf '%s\n' "${times[@]}"

@@ -1,0 +1,306 @@
+// Flooding coupled to Bullet (issue 6): a holed hull sinks iff its dry mass exceeds ρ_w V_material
+// (DESIGN-NOTES 5), floats awash otherwise; a body full of water tumbles without NaN; the paper's
+// Figs. 12–13 (bow vs stern first) and a sealed compartment, from the shipped scene files.
+#include <catch2/catch.hpp>
+
+#include "bullet/btBulletConvert.h"
+#include "bullet/btBuoyancyAction.h"
+#include "bullet/btBuoyancyWorld.h"
+#include "bullet/btBuoyantBodyBuilder.h"
+#include "cli/CliErrors.h"
+#include "cli/RunCommand.h"
+#include "cli/SceneFile.h"
+#include "graph/AutoWaterGraph.h"
+#include "graph/WaterIngress.h"
+#include "graph/btFloodingAction.h"
+#include "mesh/PrimitiveMeshes.h"
+#include "water/btWaterSurface.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+using namespace buoyancy;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// A minimal world: flat water at 0, one box hull 1 × 1 × 1 with a buoyancy and a flooding action.
+struct FloodWorld {
+    btDefaultCollisionConfiguration config;
+    btCollisionDispatcher dispatcher{&config};
+    btDbvtBroadphase broadphase;
+    btSequentialImpulseConstraintSolver solver;
+    btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+    btFlatWaterSurface surface{0.0};
+    btBuoyancyWorld water{&surface, 1000.0, 9.81};
+    std::unique_ptr<btBuoyantBody> body;
+    std::unique_ptr<btBuoyancyAction> action;
+    std::unique_ptr<btFloodingAction> flood;
+
+    FloodWorld(double dryMass, const WaterGraph& graph, const std::vector<PermeabilityRegion>& holes,
+               const btTransform& pose) {
+        world.setGravity(btVector3(0, btScalar(-9.81), 0));
+        auto shape = btBuoyancyShape::create(makeBoxMesh(1, 1, 1));
+        btBuoyantBodySettings s;
+        s.mass = dryMass;
+        body = std::make_unique<btBuoyantBody>(shape, s, pose);
+        world.addRigidBody(body->getRigidBody());
+        action = std::make_unique<btBuoyancyAction>(*body, &water);
+        world.addAction(action.get());
+        flood = std::make_unique<btFloodingAction>(*body, &water, graph,
+                                                   permeableSamplesFromRegions(shape->getDragSamples(), holes, graph));
+        world.addAction(flood.get());
+    }
+    ~FloodWorld() {
+        world.removeAction(flood.get());
+        world.removeAction(action.get());
+        world.removeRigidBody(body->getRigidBody());
+    }
+    void run(double seconds) {
+        const int frames = int(std::lround(seconds * 60));
+        for (int i = 0; i < frames; ++i) world.stepSimulation(btScalar(1.0 / 60), 4, btScalar(1.0 / 240));
+    }
+};
+
+WaterGraph oneNode(double capacity, double water = 0) {
+    WaterGraph g;
+    WaterNode n;
+    n.name = "hold";
+    n.capacity = capacity;
+    n.water = water;
+    g.nodes = {n};
+    return g;
+}
+
+double capVolume(double R, double k) { return kPi * k * k * (3 * R - k) / 3; }
+
+std::vector<std::map<std::string, double>> readCsv(const std::string& path) {
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::string> header;
+    {
+        std::stringstream ss(line);
+        std::string c;
+        while (std::getline(ss, c, ',')) header.push_back(c);
+    }
+    std::vector<std::map<std::string, double>> rows;
+    while (std::getline(in, line)) {
+        std::stringstream ss(line);
+        std::string c;
+        std::map<std::string, double> row;
+        for (std::size_t k = 0; std::getline(ss, c, ','); ++k)
+            if (k != 1 && k < header.size()) row[header[k]] = std::stod(c);
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+/// World y of a mesh-frame point for a CSV row (mesh origin x,y,z and quaternion q).
+double pointHeight(const std::map<std::string, double>& r, const Eigen::Vector3d& p) {
+    const Eigen::Quaterniond q(r.at("qw"), r.at("qx"), r.at("qy"), r.at("qz"));
+    return r.at("y") + (q * p).y();
+}
+
+}  // namespace
+
+TEST_CASE("a holed hull sinks iff its dry mass exceeds rho_w V_material, else floats awash", "[graph][bullet]") {
+    // Box 1 m³, one compartment of 0.8 m³ (V_material = 0.2 m³ → ρ_w V_m = 200 kg), a hole in the bottom.
+    const std::vector<PermeabilityRegion> hole = {{Eigen::Vector3d(0, -0.5, 0), 0.2, 0.5, -1}};
+    const btTransform start(btQuaternion::getIdentity(), btVector3(0, 0.2, 0));
+    {
+        FloodWorld w(230.0, oneNode(0.8), hole, start);  // 1.15 × ρ_w V_m
+        w.run(40);
+        const double y = double(w.body->getMeshWorldTransform().getOrigin().y());
+        INFO("heavy hull: y = " << y << ", water " << w.flood->getWaterVolume());
+        CHECK(y < -3.0);
+        CHECK(w.flood->getWaterVolume() == Approx(0.8));
+        CHECK(w.body->getMass() == Approx(230.0 + 800.0));
+    }
+    {
+        FloodWorld w(170.0, oneNode(0.8), hole, start);  // 0.85 × ρ_w V_m
+        w.run(40);
+        const btTransform t = w.body->getMeshWorldTransform();
+        const double y = double(t.getOrigin().y());
+        // Oracle (upright, sphere level model of R = (3·0.8/4π)^(1/3) at the centre): the water inside
+        // stands at the outside level s above the centre, and 170 + ρ W(s) = ρ (0.5 + s).
+        const double R = std::cbrt(3 * 0.8 / (4 * kPi));
+        double lo = -0.5, hi = 0.5;
+        for (int i = 0; i < 100; ++i) {
+            const double s = 0.5 * (lo + hi);
+            const double W = capVolume(R, std::clamp(s + R, 0.0, 2 * R));
+            ((0.17 + W) > (0.5 + s) ? lo : hi) = s;
+        }
+        const double s = 0.5 * (lo + hi);
+        INFO("light hull: y = " << y << " (oracle " << -s << "), water " << w.flood->getWaterVolume());
+        CHECK(y + 0.5 > 0.0);  // the top stays above the water: afloat, awash
+        CHECK(y < 0.0);
+        CHECK(w.flood->getWaterVolume() > 0.5);
+        CHECK(std::abs(double(t.getBasis().getColumn(1).y())) > 0.99);  // still upright
+        CHECK(y == Approx(-s).margin(0.02));
+        CHECK(w.body->getRigidBody()->getLinearVelocity().length() < 0.05);
+    }
+}
+
+TEST_CASE("a body full of water tumbles without NaN or blow-up", "[graph][bullet]") {
+    for (double fill : {1.0, 0.5}) {
+        const btTransform start(btQuaternion(btVector3(1, 1, 0).normalized(), btScalar(0.5)), btVector3(0, 0.3, 0));
+        WaterGraph g = oneNode(0.6, 0.6 * fill);
+        WaterNode second;
+        second.name = "aft";
+        second.position = Eigen::Vector3d(0.3, -0.2, 0.1);
+        second.capacity = 0.1;
+        second.water = 0.1 * fill;
+        g.nodes.push_back(second);
+        WaterEdge e;
+        e.from = 0;
+        e.to = 1;
+        e.radius = 0.05;
+        e.length = 0.4;
+        g.edges = {e};
+        FloodWorld w(100.0, g, {}, start);
+        w.body->getRigidBody()->setAngularVelocity(btVector3(3, 5, 2));
+        bool finite = true;
+        double maxSpeed = 0;
+        for (int f = 0; f < 600; ++f) {
+            w.run(1.0 / 60);
+            const btRigidBody* rb = w.body->getRigidBody();
+            const btVector3 v = rb->getLinearVelocity(), av = rb->getAngularVelocity();
+            const btVector3 c = rb->getCenterOfMassPosition();
+            finite = finite && std::isfinite(double(v.length())) && std::isfinite(double(av.length())) &&
+                     std::isfinite(double(c.length())) && std::isfinite(w.body->getMass());
+            maxSpeed = std::max({maxSpeed, double(v.length()), double(av.length())});
+        }
+        INFO("fill " << fill << ": max speed " << maxSpeed);
+        CHECK(finite);
+        CHECK(maxSpeed < 20.0);
+        CHECK(w.flood->getWaterVolume() == Approx(0.7 * fill).epsilon(1e-12));  // no holes: nothing in or out
+        CHECK(w.body->getMass() == Approx(100.0 + 700.0 * fill).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("automatic graph of a box: capacities, centroids and touching clusters", "[graph]") {
+    const TriangleMesh box = makeBoxMesh(4, 1, 1);
+    AutoWaterGraphSettings s;
+    s.nodes = 4;
+    s.resolution = 32;
+    s.fill = 0.75;
+    const WaterGraph g = autoWaterGraph(box, s);
+    REQUIRE(g.nodes.size() == 4);
+    double total = 0;
+    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+    for (const WaterNode& n : g.nodes) {
+        total += n.capacity;
+        moment += n.capacity * n.position;
+        CHECK(std::abs(n.position.y()) < 0.05);  // a 4 m bar cut along its length: centroids on the axis
+        CHECK(std::abs(n.position.z()) < 0.05);
+    }
+    CHECK(total == Approx(0.75 * 4.0).epsilon(1e-9));
+    CHECK(moment.norm() < 0.05 * total);  // the clusters' centre is the box centre
+    // Four slabs in a row touch their neighbours only: a path of 3 edges.
+    CHECK(g.edges.size() == 3);
+    CHECK_THROWS_AS(autoWaterGraph(box, AutoWaterGraphSettings{0, 32, 0.9, 1}), std::invalid_argument);
+}
+
+TEST_CASE("scenes: bow-holed boat sinks bow first, stern-holed stern first, sealed compartment floats", "[graph][cli]") {
+    const std::string dir = std::string(BUOYANCY_SOURCE_DIR) + "/bullet_examples/scenes/";
+    const auto out = std::filesystem::temp_directory_path() / "buoyancy_graph_scenes";
+    const Eigen::Vector3d bow(2, 0, 0), stern(-2, 0, 0);
+    auto run = [&](const std::string& name, double duration) {
+        const std::string o = (out / name).string();
+        REQUIRE(cli::runSceneCommand(dir + name + ".json", o, duration) == 0);
+        return readCsv(o + "/trajectory.csv");
+    };
+    {
+        const auto rows = run("boat_holed_bow", 30);
+        // While it goes down (first row with 0.5 m³ inside), the bow is the lower end; finally it sinks.
+        bool checked = false;
+        for (const auto& r : rows)
+            if (!checked && r.at("water_volume") > 0.5) {
+                CHECK(pointHeight(r, bow) < pointHeight(r, stern) - 0.3);
+                checked = true;
+            }
+        CHECK(checked);
+        CHECK(rows.back().at("y") < -5.0);
+    }
+    {
+        const auto rows = run("boat_holed_stern", 40);
+        bool checked = false;
+        for (const auto& r : rows)
+            if (!checked && r.at("water_volume") > 0.5) {
+                CHECK(pointHeight(r, stern) < pointHeight(r, bow) - 0.1);
+                checked = true;
+            }
+        CHECK(checked);
+        CHECK(rows.back().at("y") < -5.0);
+    }
+    {
+        const auto rows = run("sealed_compartment", 40);
+        // Same hole as the bow scene, but the bow compartment is cut off: only it floods (0.9 m³), and
+        // 1200 kg + 900 kg < ρ_w × 3.0 m³: the boat stays afloat (its stern above the water).
+        CHECK(rows.back().at("water_volume") == Approx(0.9).epsilon(1e-9));
+        CHECK(pointHeight(rows.back(), stern) > 0.0);
+        CHECK(rows.back().at("y") > -2.0);
+    }
+    std::error_code ec;
+    std::filesystem::remove_all(out, ec);
+}
+
+TEST_CASE("scene keys water_graph and permeability: errors name the key", "[graph][cli]") {
+    auto scene = [](const std::string& extra) {
+        return std::string(R"({"bodies": [{"name": "b", "shape": {"type": "box", "size": [2, 1, 1]}, "mass": 300)") +
+               extra + "}]}";
+    };
+    auto error = [&](const std::string& extra) {
+        try {
+            cli::parseScene(scene(extra), "s.json", ".");
+        } catch (const cli::UsageError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    const std::string node = R"("water_graph": {"nodes": [{"name": "hold", "capacity": 1}])";
+    CHECK_THAT(error(R"(, "permeability": {"regions": []})"), Catch::Contains("bodies[0].permeability"));
+    CHECK_THAT(error(", " + node + R"(, "edges": [{"from": "hold", "to": "x"}]})"),
+               Catch::Contains("bodies[0].water_graph.edges[0].to") && Catch::Contains("\"x\""));
+    CHECK_THAT(error(", " + node + R"(}, "permeability": {"regions": [{"centre": [0, 0, 0], "radius": 0.1, "node": "x"}]})"),
+               Catch::Contains("regions[0].node"));
+    CHECK_THAT(error(R"(, "water_graph": {"nodes": [{"name": "a", "capacity": 1, "water": 2}]})"),
+               Catch::Contains("water_graph.nodes[0].water"));
+    CHECK_THAT(error(R"(, "water_graph": {"auto": {"nodes": 0}})"), Catch::Contains("water_graph.auto.nodes"));
+    CHECK_THAT(error(R"(, "water_graph": {"auto": {}, "nodes": []})"), Catch::Contains("water_graph.auto"));
+    CHECK_THAT(error(", " + node + R"(, "bogus": 1})"), Catch::Contains("water_graph.bogus"));
+    CHECK_THAT(error(R"(, "water_graph": "no_such_graph.json")"), Catch::Contains("cannot read"));
+    CHECK_THAT(error(", " + node + R"(}, "permeability": {"texture": "x.png"})"), Catch::Contains("permeability.texture"));
+    const cli::Scene ok = cli::parseScene(scene(", " + node + R"(, "seed": 3, "ingress": "paper"}, "permeability": {"regions": [{"centre": [0, -0.5, 0], "radius": 0.3}]})"),
+                                          "s.json", ".");
+    REQUIRE(ok.bodies[0].flooding.enabled);
+    CHECK(ok.bodies[0].flooding.graph.seed == 3);
+    CHECK(ok.bodies[0].flooding.graph.ingress == WaterIngressModel::Paper);
+    CHECK(ok.bodies[0].flooding.regions.size() == 1);
+}
+
+TEST_CASE("an automatic graph floods a holed boat through the runner", "[graph][cli]") {
+    const auto dir = std::filesystem::temp_directory_path() / "buoyancy_graph_auto";
+    std::filesystem::create_directories(dir);
+    const std::string model = std::string(BUOYANCY_SOURCE_DIR) + "/bullet_examples/models/boat_hull.obj";
+    {
+        std::ofstream f(dir / "auto.json");
+        f << R"({"duration": 20, "output_interval": 1, "bodies": [{"name": "boat", "shape": {"type": "mesh", "file": ")"
+          << model << R"("}, "mass": 1200, "position": [0, 0.2, 0], "water_graph": {"auto": {"nodes": 5}},
+              "permeability": {"regions": [{"centre": [-1.9, -0.4, 0], "radius": 0.3, "value": 0.2}]}}]})";
+    }
+    REQUIRE(cli::runSceneCommand((dir / "auto.json").string(), (dir / "out").string(), std::nullopt) == 0);
+    const auto rows = readCsv((dir / "out" / "trajectory.csv").string());
+    CHECK(rows.front().at("water_volume") == 0.0);
+    CHECK(rows.back().at("water_volume") > 0.3);  // water came in through the stern
+    for (const auto& r : rows) CHECK(r.at("mass") == Approx(1200.0 + 1000.0 * r.at("water_volume")).epsilon(1e-9));
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+}
