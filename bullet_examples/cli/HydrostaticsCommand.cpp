@@ -1,7 +1,6 @@
 #include "cli/HydrostaticsCommand.h"
 
-#include "atlas/UvLayout.h"
-#include "bake/BakeSamples.h"
+#include "bullet/btBuoyancyShape.h"
 #include "cli/ChildProcessImport.h"
 #include "cli/CliErrors.h"
 #include "integrals/BuoyancyMethod.h"
@@ -71,8 +70,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     if (!(o.import_timeout > 0)) throw UsageError("--import-timeout must be positive");
     const Eigen::Vector3d axis(o.rotate[0], o.rotate[1], o.rotate[2]);
     if (!(axis.norm() > 1e-12)) throw UsageError("--rotate: the rotation axis is zero");
-    const auto requested = parseBuoyancyMethod(o.method);
-    if (!requested)
+    if (o.method != "auto" && !parseBuoyancyMethod(o.method))
         throw UsageError("--method: unknown method '" + o.method +
                          "' (texel-centre, exact-coverage, exact-mesh, default)");
     if (o.texture && (*o.texture < 1 || *o.texture > 8192))
@@ -92,15 +90,27 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     }
     for (const auto& w : report.warnings) warnings.push_back(w);
 
-    // ---- Method ---------------------------------------------------------------------------------------------
-    const BuoyancyMethod method = resolveMethod(*requested, mesh.triangleCount());
-    int texture = 0;
-    if (methodUsesTexture(method)) {
-        texture = o.texture ? *o.texture
-                            : (*requested == BuoyancyMethod::Default ? kDefaultLargeMeshTexture
-                                                                     : defaultTextureSize(method));
-    } else if (o.texture) {
+    // ---- Shape: the library's own pipeline (method choice, UVs, baking, mass properties) ---------------------
+    // The CLI runs exactly what a btBuoyancyAction would use, so its numbers are the library's.
+    btBuoyancySettings settings;
+    settings.method = btBuoyancyMethodFromName(o.method);  // "default" = Auto
+    settings.textureSize = o.texture.value_or(0);
+    const bool meshHadUvs = mesh.hasUvs();
+    const std::size_t triangles = mesh.triangleCount();
+    std::shared_ptr<const btBuoyancyShape> shape;
+    try {
+        shape = btBuoyancyShape::create(std::move(mesh), settings);
+    } catch (const std::exception& e) {  // e.g. charts that cannot fit a tiny --texture, a texture too coarse
+        throw UsageError(o.mesh + ": " + e.what());
+    }
+    const btBuoyancyMethod method = shape->getMethod();
+    const int texture = shape->getTextureSize();
+    if (method == btBuoyancyMethod::ExactMesh && o.texture)
         warnings.push_back({"--texture is ignored by the exact-mesh method"});
+    if (shape->usesGeneratedUvs() && meshHadUvs) {
+        std::string why;
+        for (const auto& r : shape->getUvProblems()) why += (why.empty() ? "" : "; ") + r;
+        warnings.push_back({"model UVs not usable (" + why + "): generated an atlas"});
     }
 
     // Pose: rotation about the axis through the mesh origin, then translation.
@@ -109,39 +119,17 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     pose.rotate(Eigen::AngleAxisd(o.rotate[3] * M_PI / 180.0, axis.normalized()));
     const btFlatWaterSurface water(o.water_height);
 
-    MassProperties dry;
+    const MassProperties& dry = shape->getUnitSolid();
     HydrostaticsResult wet;
-    std::string uvSource = "model";
-    std::size_t sampleCount = 0;
-    if (methodUsesTexture(method)) {
-        UvLayout layout;
-        try {
-            layout = chooseUvLayout(mesh, texture);
-        } catch (const std::exception& e) {
-            throw UsageError(o.mesh + ": " + e.what());
-        }
-        if (layout.generated) {
-            uvSource = "generated";
-            std::string why;
-            for (const auto& r : layout.reasons) why += (why.empty() ? "" : "; ") + r;
-            if (mesh.hasUvs()) warnings.push_back({"model UVs not usable (" + why + "): generated an atlas"});
-        }
-        const SurfaceSamples samples = bakeSurfaceSamples(
-            mesh, layout.corner_uvs, texture,
-            method == BuoyancyMethod::TexelCentre ? BakeMethod::TexelCentre : BakeMethod::ExactCoverage);
-        sampleCount = samples.size();
-        try {
-            dry = solidMassProperties(samples, 1.0);
-        } catch (const std::invalid_argument& e) {  // issue 10 (fuzzing): a texture too coarse for the mesh
-            throw UsageError(o.mesh + ": texture " + std::to_string(texture) + " is too coarse for this mesh (" +
-                             e.what() + "); use a larger --texture");
-        }
-        SampleWorkspace ws;
-        wet = sampledHydrostatics(samples, pose, water, 0.0, o.water_density, o.gravity, pose * dry.centre, ws);
+    // "generated" when the samples came through our atlas; exact-mesh uses no texture: it reports the model's.
+    const std::string uvSource = shape->usesGeneratedUvs() || !meshHadUvs ? "generated" : "model";
+    const std::size_t sampleCount = shape->getSamples().size();
+    if (method == btBuoyancyMethod::ExactMesh) {
+        wet = clippedHydrostatics(shape->getMesh(), pose, water, 0.0, o.water_density, o.gravity, pose * dry.centre);
     } else {
-        uvSource = mesh.hasUvs() ? "model" : "generated";  // no texture is used by exact-mesh
-        dry = polyhedronMassProperties(mesh, 1.0);
-        wet = clippedHydrostatics(mesh, pose, water, 0.0, o.water_density, o.gravity, pose * dry.centre);
+        SampleWorkspace ws;
+        wet = sampledHydrostatics(shape->getSamples(), pose, water, 0.0, o.water_density, o.gravity,
+                                  pose * dry.centre, ws);
     }
     if (!std::isfinite(dry.volume) || !allFinite(dry.centre) || !dry.inertia.allFinite() ||
         !std::isfinite(wet.submerged_volume) || !allFinite(wet.force) || !allFinite(wet.torque))
@@ -158,7 +146,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
         nlohmann::json inertia = nlohmann::json::array();
         for (int r = 0; r < 3; ++r) inertia.push_back({dry.inertia(r, 0), dry.inertia(r, 1), dry.inertia(r, 2)});
         j["mesh"] = {{"file", o.mesh},
-                     {"triangles", mesh.triangleCount()},
+                     {"triangles", triangles},
                      {"components", report.components},
                      {"uv", uvSource},
                      {"warnings", warn},
@@ -166,7 +154,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
                      {"volume", dry.volume},
                      {"centre_of_volume", vec(dry.centre)},
                      {"inertia_unit_density", inertia}};
-        j["method"] = {{"name", buoyancyMethodName(method)}, {"texture", texture}, {"samples", sampleCount}};
+        j["method"] = {{"name", btBuoyancyMethodName(method)}, {"texture", texture}, {"samples", sampleCount}};
         j["submerged"] = {{"volume", isWet ? wet.submerged_volume : 0.0},
                           {"centre_of_buoyancy", isWet ? vec(wet.centre_of_buoyancy) : nlohmann::json(nullptr)},
                           {"force", vec(wet.force)},
@@ -182,7 +170,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
         return std::string(buf);
     };
     std::printf("mesh               %s\n", o.mesh.c_str());
-    std::printf("  triangles        %zu (components %zu, UVs %s)\n", mesh.triangleCount(), report.components,
+    std::printf("  triangles        %zu (components %zu, UVs %s)\n", triangles, report.components,
                 uvSource.c_str());
     std::printf("  area             %.9g m^2\n", dry.area);
     std::printf("  volume           %.9g m^3\n", dry.volume);
@@ -190,7 +178,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     std::printf("  inertia / rho    [%.9g %.9g %.9g; %.9g %.9g %.9g; %.9g %.9g %.9g] m^5 (about the centre)\n",
                 dry.inertia(0, 0), dry.inertia(0, 1), dry.inertia(0, 2), dry.inertia(1, 0), dry.inertia(1, 1),
                 dry.inertia(1, 2), dry.inertia(2, 0), dry.inertia(2, 1), dry.inertia(2, 2));
-    std::printf("method             %s", buoyancyMethodName(method));
+    std::printf("method             %s", btBuoyancyMethodName(method));
     if (texture) std::printf(" (texture %dx%d, %zu samples)", texture, texture, sampleCount);
     std::printf("\nwater              flat at y = %.9g m, density %.9g kg/m^3, g = %.9g m/s^2\n", o.water_height,
                 o.water_density, o.gravity);

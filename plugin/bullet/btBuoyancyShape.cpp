@@ -101,6 +101,8 @@ std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::create(buoyancy::Triangl
                                               : buoyancy::BakeMethod::ExactCoverage;
         const int n = btBuoyancyResolveTextureSize(settings, shape->m_method);
         const buoyancy::UvLayout layout = buoyancy::chooseUvLayout(m, n, settings.preferModelUvs);
+        shape->m_uvGenerated = layout.generated;
+        shape->m_uvProblems = layout.reasons;
         shape->m_samples = buoyancy::bakeSurfaceSamples(m, layout.corner_uvs, n, bake);
         if (shape->m_samples.size() == 0) throw std::invalid_argument("mesh: baking produced no samples");
         // Mass properties from the same samples as the buoyancy (DESIGN-NOTES 2.1), so ρ_body = ρ_w is neutral.

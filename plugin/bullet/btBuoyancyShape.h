@@ -11,6 +11,8 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <string>
+#include <vector>
 
 /// Shared per-mesh buoyancy data (immutable once created).
 class btBuoyancyShape {
@@ -44,6 +46,11 @@ public:
     const Eigen::Vector3d& getBoundsCentre() const { return m_boundsCentre; }
     /// Radius of the bounding sphere about getBoundsCentre(), m.
     double getBoundsRadius() const { return m_boundsRadius; }
+    /// True when the samples were baked through an atlas the library generated (the model's UVs were missing or
+    /// unusable); false for the model's own UVs and for ExactMesh (no texture).
+    bool usesGeneratedUvs() const { return m_uvGenerated; }
+    /// Why the model's UVs were not used (empty unless usesGeneratedUvs()), e.g. "overlapping UVs (120 triangles)".
+    const std::vector<std::string>& getUvProblems() const { return m_uvProblems; }
     /// Texture size the samples were baked at (0 for ExactMesh).
     int getTextureSize() const { return m_samples.texture_size; }
 
@@ -58,4 +65,6 @@ private:
     buoyancy::MassProperties m_unitShell;
     Eigen::Vector3d m_boundsCentre = Eigen::Vector3d::Zero();
     double m_boundsRadius = 0;
+    bool m_uvGenerated = false;
+    std::vector<std::string> m_uvProblems;
 };

@@ -1,7 +1,6 @@
 #include "AccuracyHarness.h"
 
-#include "atlas/UvLayout.h"
-#include "bake/BakeSamples.h"
+#include "bullet/btBuoyancyShape.h"
 #include "integrals/Hydrostatics.h"
 #include "integrals/MassProperties.h"
 #include "oracles/PolyhedralOracle.h"
@@ -18,29 +17,22 @@ using namespace buoyancy;
 
 AccuracyReport measureAccuracy(const TriangleMesh& mesh, BuoyancyMethod requested, int texture, int depthCount) {
     AccuracyReport rep;
-    const BuoyancyMethod method = resolveMethod(requested, mesh.triangleCount());
-    rep.method = buoyancyMethodName(method);
+    // Through btBuoyancyShape: the same pipeline (method choice, UVs, bake, mass properties) a body gets.
+    btBuoyancySettings settings;
+    settings.method = btBuoyancyMethodFromName(buoyancyMethodName(requested));
+    settings.textureSize = texture;
+    const auto shape = btBuoyancyShape::create(mesh, settings);
+    const bool sampled = shape->getMethod() != btBuoyancyMethod::ExactMesh;
+    rep.method = btBuoyancyMethodName(shape->getMethod());
+    rep.texture = shape->getTextureSize();
+    rep.samples = shape->getSamples().size();
+    rep.generated_uvs = shape->usesGeneratedUvs();
+    const SurfaceSamples& samples = shape->getSamples();
+    const MassProperties& dry = shape->getUnitSolid();
     const OracleMoments exact = oracleDryMoments(mesh.vertices, mesh.triangles);
     Eigen::AlignedBox3d box;
     for (const auto& v : mesh.vertices) box.extend(v);
     const double diag = box.diagonal().norm();
-
-    SurfaceSamples samples;
-    MassProperties dry;
-    if (methodUsesTexture(method)) {
-        rep.texture = texture > 0 ? texture
-                                  : (requested == BuoyancyMethod::Default ? kDefaultLargeMeshTexture
-                                                                          : defaultTextureSize(method));
-        const UvLayout layout = chooseUvLayout(mesh, rep.texture);
-        rep.generated_uvs = layout.generated;
-        samples = bakeSurfaceSamples(mesh, layout.corner_uvs, rep.texture,
-                                     method == BuoyancyMethod::TexelCentre ? BakeMethod::TexelCentre
-                                                                           : BakeMethod::ExactCoverage);
-        rep.samples = samples.size();
-        dry = solidMassProperties(samples, 1.0);
-    } else {
-        dry = polyhedronMassProperties(mesh, 1.0);
-    }
     rep.dry_volume_pct = 100 * std::fabs(dry.volume - exact.volume) / exact.volume;
     rep.centre_pct_diag = 100 * (dry.centre - exact.centroid).norm() / diag;
     const Eigen::Matrix3d Iex = exact.inertiaAboutCentroid();
@@ -65,7 +57,7 @@ AccuracyReport measureAccuracy(const TriangleMesh& mesh, BuoyancyMethod requeste
             const OracleMoments sub = oracleSubmergedMoments(posed, mesh.triangles, h);
             const btFlatWaterSurface water(h);
             const HydrostaticsResult r =
-                methodUsesTexture(method)
+                sampled
                     ? sampledHydrostatics(samples, pose, water, 0.0, 1000.0, 9.81, pose * dry.centre, ws)
                     : clippedHydrostatics(mesh, pose, water, 0.0, 1000.0, 9.81, pose * dry.centre);
             rep.sub_volume_pct =
