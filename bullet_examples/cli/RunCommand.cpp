@@ -154,7 +154,7 @@ int runScene(const RunOptions& options) {
         w.groundShape = std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), btScalar(*scene.groundHeight));
         btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, w.groundShape.get());
         info.m_friction = 0.8;
-        info.m_rollingFriction = 0.05;  // a seabed: round bodies that sink stop rolling (docs/scene-format.md)
+        info.m_rollingFriction = 0.1;   // a seabed: round bodies that sink stop rolling (docs/scene-format.md)
         info.m_spinningFriction = 0.05; // ... and stop spinning about the vertical
         w.ground = std::make_unique<btRigidBody>(info);
         w.world.addRigidBody(w.ground.get());
