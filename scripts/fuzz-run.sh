@@ -18,7 +18,7 @@ CC=clang CXX=clang++ cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBU
 targets=(mesh_prepare atlas_bake scene_json assimp_import)
 cmake --build "$dir" -j"${JOBS:-2}" --target "${targets[@]/#/fuzz_}"
 # The CLI that checks assimp crash inputs: the normal build when present (scripts/test.sh made it).
-cli=build/bin/buoyancy
+cli=${BUOYANCY_CLI:-build/bin/buoyancy}
 [ -x "$cli" ] || { cmake --build "$dir" -j"${JOBS:-2}" --target buoyancy; cli=$dir/bin/buoyancy; }
 mkdir -p "$dir/artifacts"
 exts=(.obj .ply .stl .gltf .glb .dae .fbx .3ds)   # supportedMeshExtensions() order: first byte picks one

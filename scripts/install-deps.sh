@@ -20,6 +20,13 @@ if [ "${1:-}" = "--extra" ]; then
     llvm                   # llvm-symbolizer: readable sanitizer stack traces
   )
 fi
+# `scripts/install-deps.sh --bench`: also what scripts/bench.sh needs for its plots (matplotlib). The default
+# run and the tests do not need it.
+if [ "${1:-}" = "--bench" ]; then
+  PACKAGES+=(
+    python3-matplotlib     # docs/benchmarks/*.png (scripts/bench_plots.py)
+  )
+fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -108,7 +108,7 @@ TEST_CASE("a ball with a low centre of mass rights itself", "[bullet][attitude]"
         double prev = 0, tPrev = 0, maxRoll = 0;
         for (int k = 1; k <= 240 * 12; ++k) {
             w.step(1, 1, dt);
-            const btMatrix3x3& B = w.body(0).getMeshWorldTransform().getBasis();
+            const btMatrix3x3 B = w.body(0).getMeshWorldTransform().getBasis();
             const double roll = std::atan2(-double(B[0][1]), double(B[1][1])) * kDeg;  // about z
             maxRoll = std::max(maxRoll, std::abs(roll));
             if (k > 1 && prev > 0 && roll <= 0) crossings.push_back(tPrev + dt * prev / (prev - roll));
@@ -134,7 +134,7 @@ TEST_CASE("a ball with a low centre of mass rights itself", "[bullet][attitude]"
         const int frames = 120;
         for (int f = 0; f < frames; ++f) {
             w.step(1, 4, 1.0 / 240);
-            const btMatrix3x3& B = w.body(0).getMeshWorldTransform().getBasis();
+            const btMatrix3x3 B = w.body(0).getMeshWorldTransform().getBasis();
             const double roll = std::atan2(-double(B[0][1]), double(B[1][1])) * kDeg;
             amp = std::max(amp, std::abs(roll));
             mean += roll / frames;

@@ -130,7 +130,7 @@ TEST_CASE("a neutrally buoyant body stays at its depth", "[bullet][dynamics]") {
     CHECK(double((p - btVector3(0, -2, 0)).length()) < 0.01);
 }
 
-TEST_CASE("a symmetric body in calm water neither drifts nor spins", "[bullet][dynamics]") {
+TEST_CASE("a symmetric body in calm water neither drifts nor spins", "[bullet][dynamics][slow]") {
     btBuoyancySettings bs;
     bs.method = GENERATE(btBuoyancyMethod::ExactMesh, btBuoyancyMethod::ExactCoverage);
     auto shape = btBuoyancyShape::create(buoyancy::makeSphereMesh(0.5, 48, 24), bs);

@@ -43,7 +43,7 @@ double drafError(const buoyancy::TriangleMesh& mesh, const btTransform& last, do
 
 }  // namespace
 
-TEST_CASE("plank settles at the analytic draft d = s c", "[bullet][equilibrium]") {
+TEST_CASE("plank settles at the analytic draft d = s c", "[bullet][equilibrium][slow]") {
     const double a = 2.0, c = 0.4, b = 1.0;
     const auto mesh = buoyancy::makeBoxMesh(a, c, b);
     btBuoyancySettings bs;
@@ -65,7 +65,7 @@ TEST_CASE("plank settles at the analytic draft d = s c", "[bullet][equilibrium]"
     }
 }
 
-TEST_CASE("sphere settles at the draft of its own mesh volume", "[bullet][equilibrium]") {
+TEST_CASE("sphere settles at the draft of its own mesh volume", "[bullet][equilibrium][slow]") {
     const double R = 0.5;
     const auto mesh = buoyancy::makeSphereMesh(R, 64, 32);
     btBuoyancySettings bs;

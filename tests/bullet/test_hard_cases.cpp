@@ -321,7 +321,7 @@ void propertyTest(int cases, std::uint32_t seed, const std::vector<double>& hzCh
 }  // namespace
 
 TEST_CASE("property: random poses, velocities and densities stay finite, bounded and come to rest",
-          "[bullet][hard][property]") {
+          "[bullet][hard][property][slow]") {
     propertyTest(200, 12345u, {60.0}, 40.0);  // 40 s: heavy cylinders thrown spinning need ~30 s to stop rolling
 }
 

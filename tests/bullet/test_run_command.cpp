@@ -91,7 +91,7 @@ TEST_CASE("run writes the trajectory CSV at the output times, deterministically"
     CHECK(last.v[16] == Approx(0.4).epsilon(0.01));  // submerged volume = m / ρ
 }
 
-TEST_CASE("run: hard cases stay finite and bounded", "[bullet][run][hard]") {
+TEST_CASE("run: hard cases stay finite and bounded", "[bullet][run][hard][slow]") {
     const std::string out = tempDir("hard");
     REQUIRE(buoyancy::cli::runSceneCommand(kScenes + "hard_cases.json", out, std::nullopt) == 0);
     const auto rows = readCsv(out + "/trajectory.csv");

@@ -208,7 +208,7 @@ TEST_CASE("automatic graph of a box: capacities, centroids and touching clusters
     CHECK_THROWS_AS(autoWaterGraph(box, AutoWaterGraphSettings{0, 32, 0.9, 1}), std::invalid_argument);
 }
 
-TEST_CASE("scenes: bow-holed boat sinks bow first, stern-holed stern first, sealed compartment floats", "[graph][cli]") {
+TEST_CASE("scenes: bow-holed boat sinks bow first, stern-holed stern first, sealed compartment floats", "[graph][cli][slow]") {
     const std::string dir = std::string(BUOYANCY_SOURCE_DIR) + "/bullet_examples/scenes/";
     const auto out = std::filesystem::temp_directory_path() / "buoyancy_graph_scenes";
     const Eigen::Vector3d bow(2, 0, 0), stern(-2, 0, 0);

@@ -208,7 +208,7 @@ TEST_CASE("communicating vessels level out at the analytic common level", "[grap
     CHECK(s.totalWater() == Approx(0.9).epsilon(1e-12));
 }
 
-TEST_CASE("conservation over 1e5 steps with ingress, drainage, flow and tumbling", "[graph]") {
+TEST_CASE("conservation over 1e5 steps with ingress, drainage, flow and tumbling", "[graph][slow]") {
     WaterGraph g;
     g.nodes = {sphereNode("a", {0, 0, 0}, 0.3, 0.1), sphereNode("b", {1, 0.2, 0}, 0.2),
                sphereNode("c", {-1, -0.3, 0.2}, 0.25, 0.05), sphereNode("d", {0, -0.5, 1}, 0.1),

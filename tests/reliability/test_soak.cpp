@@ -158,7 +158,7 @@ void checkSoak(int bodies, int substeps, std::uint32_t seed) {
 
 }  // namespace
 
-TEST_CASE("soak: 50 random bodies, 2,000 substeps, flat water", "[reliability][soak]") { checkSoak(50, 2000, 12345u); }
+TEST_CASE("soak: 50 random bodies, 2,000 substeps, flat water", "[reliability][soak][slow]") { checkSoak(50, 2000, 12345u); }
 
 TEST_CASE("soak: 1,000 random bodies, 100,000 substeps, flat water", "[reliability][soak][long]") {
     checkSoak(1000, 100000, 2024u);

@@ -92,7 +92,7 @@ TEST_CASE("waves: a body on a sloped surface gets the horizontal pressure push",
     CHECK(w.force.x() / w.force.y() == Approx(-dfdx).epsilon(0.05));
 }
 
-TEST_CASE("waves: a small buoy follows a long Gerstner wave", "[water][physics]") {
+TEST_CASE("waves: a small buoy follows a long Gerstner wave", "[water][physics][slow]") {
     // λ = 40 m (period 5.06 s), A = 0.5 m; a 0.3 m sphere of density 500: heave amplitude ≈ A.
     const double A = 0.5, lambda = 40.0;
     btGerstnerWaterSurface sea({{A, lambda, 1.0, 0.0, 0.5, 0.0}}, 0.0);
