@@ -101,7 +101,12 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     try {
         shape = btBuoyancyShape::create(std::move(mesh), settings);
     } catch (const std::exception& e) {  // e.g. charts that cannot fit a tiny --texture, a texture too coarse
-        throw UsageError(o.mesh + ": " + e.what());
+        const btBuoyancyMethod wanted = btBuoyancyResolveMethod(settings, triangles);
+        if (wanted == btBuoyancyMethod::ExactMesh) throw UsageError(o.mesh + ": " + e.what());
+        // A mesh that passed prepareMesh encloses a positive volume: a texture method that fails on it had too
+        // few texels (issue 10, found by fuzzing).
+        throw UsageError(o.mesh + ": texture " + std::to_string(btBuoyancyResolveTextureSize(settings, wanted)) +
+                         " is too coarse for this mesh (" + e.what() + "); use a larger --texture");
     }
     const btBuoyancyMethod method = shape->getMethod();
     const int texture = shape->getTextureSize();

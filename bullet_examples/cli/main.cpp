@@ -1,8 +1,10 @@
 // The `buoyancy` command-line tool: one executable, one subcommand per job.
 //   buoyancy hydrostatics MESH [...]   dry mass properties and flat-water hydrostatics
 //   buoyancy run SCENE.json --out DIR  headless scene runner (trajectory CSV)
+//   buoyancy bench [--quick] [--out DIR]  speed against error benchmark (issue 9)
 // Exit codes (every subcommand): 0 success, 2 bad input or usage, 3 internal failure.
 
+#include "cli/BenchCommand.h"
 #include "cli/CliErrors.h"
 #include "cli/HydrostaticsCommand.h"
 #include "cli/RunCommand.h"
@@ -22,10 +24,12 @@ int main(int argc, char** argv) {
     addHydrostaticsCommand(app, hydro);
     RunOptions run;
     addRunCommand(app, run);
+    BenchOptions bench;
+    addBenchCommand(app, bench);
 
     // CLI11 only says "A subcommand is required" for a misspelt one: name it.
     if (argc > 1 && argv[1][0] != '-' && app.get_subcommands(std::function<bool(CLI::App*)>([&](CLI::App* s) { return s->get_name() == argv[1]; })).empty()) {
-        std::cerr << "error: unknown command '" << argv[1] << "' (hydrostatics, run)\n";
+        std::cerr << "error: unknown command '" << argv[1] << "' (hydrostatics, run, bench)\n";
         return kExitBadInput;
     }
     try {
@@ -44,6 +48,7 @@ int main(int argc, char** argv) {
     try {
         if (app.got_subcommand("hydrostatics")) return runHydrostatics(hydro);
         if (app.got_subcommand("run")) return runScene(run);
+        if (app.got_subcommand("bench")) return runBench(bench);
     } catch (const UsageError& e) {
         std::cerr << "error: " << e.what() << '\n';
         return kExitBadInput;

@@ -44,8 +44,11 @@ Eigen::Matrix3d steiner(double mass, const Eigen::Vector3d& d) {
 }  // namespace
 
 void btBuoyantBodySettings::validate() const {
-    if (massModel != btBuoyantMassModel::Solid && massModel != btBuoyantMassModel::Shell)
+    if (massModel != btBuoyantMassModel::Solid && massModel != btBuoyantMassModel::Shell &&
+        massModel != btBuoyantMassModel::DensityMap)
         throw std::invalid_argument("massModel: not a btBuoyantMassModel value");
+    if (!fixed && massModel == btBuoyantMassModel::DensityMap && !arealDensity)
+        throw std::invalid_argument("arealDensity: the DensityMap mass model needs a function");
     if (!fixed) {
         requireRange(mass, 0.0, false, "mass");
         if (mass == 0.0) requireRange(density, 0.0, true, "density");
@@ -65,13 +68,33 @@ void btBuoyantBodySettings::validate() const {
 
 MassProperties btBuoyantBodyMassProperties(const btBuoyancyShape& shape, const btBuoyantBodySettings& settings) {
     settings.validate();
-    const MassProperties& unit =
-        settings.massModel == btBuoyantMassModel::Solid ? shape.getUnitSolid() : shape.getUnitShell();
+    MassProperties mapped;
+    if (settings.massModel == btBuoyantMassModel::DensityMap) {
+        // σ at every surface sample of the shape (the baked samples, or the per-face samples of exact-mesh).
+        const buoyancy::SurfaceSamples& smp = shape.getDragSamples();
+        std::vector<double> sigma(smp.size());
+        for (std::size_t i = 0; i < smp.size(); ++i) {
+            sigma[i] = settings.arealDensity(Eigen::Vector3d(smp.px[i], smp.py[i], smp.pz[i]));
+            if (!std::isfinite(sigma[i]) || sigma[i] < 0.0)
+                throw std::invalid_argument("arealDensity: must be finite and >= 0 (got " + std::to_string(sigma[i]) +
+                                            " at a surface point)");
+        }
+        mapped = buoyancy::shellMassProperties(smp, sigma);
+        if (settings.mass > 0.0) {  // rescale the map to the given mass
+            const double k = settings.mass / mapped.mass;
+            mapped.mass *= k;
+            mapped.inertia *= k;
+        }
+    }
+    const MassProperties& unit = settings.massModel == btBuoyantMassModel::Solid   ? shape.getUnitSolid()
+                                 : settings.massModel == btBuoyantMassModel::Shell ? shape.getUnitShell()
+                                                                                   : mapped;
     if (!(unit.mass > 0.0)) throw std::invalid_argument("mesh: zero mass for this mass model");
     // Unit data is at density 1 (and thickness 1 m for the shell): everything scales linearly.
-    double scale = settings.massModel == btBuoyantMassModel::Solid ? settings.density
-                                                                   : settings.density * settings.shellThickness;
-    if (settings.mass > 0.0) scale = settings.mass / unit.mass;
+    double scale = settings.massModel == btBuoyantMassModel::Solid   ? settings.density
+                   : settings.massModel == btBuoyantMassModel::Shell ? settings.density * settings.shellThickness
+                                                                     : 1.0;  // the map carries its own density
+    if (settings.mass > 0.0 && settings.massModel != btBuoyantMassModel::DensityMap) scale = settings.mass / unit.mass;
     MassProperties mp = unit;
     mp.mass = unit.mass * scale;
     mp.inertia = unit.inertia * scale;

@@ -10,6 +10,7 @@
 #include <LinearMath/btTransform.h>
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -22,6 +23,10 @@ class btTriangleIndexVertexArray;
 enum class btBuoyantMassModel {
     Solid, ///< uniform solid of `density`
     Shell, ///< thin shell of `density` and `shellThickness` (DESIGN-NOTES 2.1: mass ρ Σ|A_i| t)
+    /// Density map: a thin shell whose areal density σ(p) (kg/m², = density × thickness) varies over the surface,
+    /// given by `arealDensity` at each surface sample (body frame): a hull thicker at the keel, a painted map.
+    /// Mass Σ σ_i |A_i|, centre and inertia from the same samples (DESIGN-NOTES 2.1).
+    DensityMap,
 };
 
 /// What the body collides through.
@@ -45,6 +50,9 @@ struct btBuoyantBodySettings {
     double density = 500.0;      ///< material density, kg/m³, > 0 (wood ≈ 500, steel 7850); ignored when mass > 0
     double mass = 0.0;           ///< > 0: the body's dry mass, kg (density scaled to match; ballast extra); 0: use density
     double shellThickness = 0.01; ///< shell thickness, m, > 0 (Shell model only)
+    /// DensityMap model only: areal density σ at a body-frame surface point, kg/m², ≥ 0 and finite, not zero
+    /// everywhere; `mass` > 0 rescales it.
+    std::function<double(const Eigen::Vector3d& point)> arealDensity;
     std::vector<btBuoyantBallast> ballast; ///< point masses added to the dry mass (parallel-axis theorem)
     bool fixed = false;          ///< a static body (mass 0 for Bullet); mass settings are ignored
 

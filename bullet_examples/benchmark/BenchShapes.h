@@ -1,0 +1,50 @@
+#pragma once
+/// @file BenchShapes.h
+/// The shapes and poses of the speed-against-error benchmark (issue 9): analytic meshes from
+/// PrimitiveMeshes, a real model from assimp-testmodels, the bundled low-poly boat, and high-poly cases.
+
+#include "mesh/TriangleMesh.h"
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace buoyancy::bench {
+
+/// One benchmark shape (closed, outward mesh in its own frame, m).
+struct BenchShape {
+    std::string name;  ///< id used in the CSVs, e.g. "sphere", "duck-x4"
+    std::string note;  ///< how it was made, for the README
+    TriangleMesh mesh; ///< the mesh
+};
+
+/// Flat 1→4 subdivision (edge midpoints, UVs interpolated per corner): the same solid with 4× the
+/// triangles, so exact values are unchanged and only the cost grows.
+TriangleMesh subdivideMesh(const TriangleMesh& mesh);
+
+/// The bundled low-poly boat (bullet_examples/models/boat_hull.obj, 850 triangles), imported and prepared.
+/// @throws std::runtime_error when the file is missing or unusable
+TriangleMesh loadBoatHull();
+
+/// The benchmark shapes. Quick: box, sphere, boat. Full: + torus, duck (assimp-testmodels Collada/duck.dae,
+/// 4212 triangles), duck-x4 (the duck subdivided once, 16848 triangles) and torus-fine (160×64, 20480
+/// triangles), the ≥ 10k-triangle cases. A model that cannot be loaded is left out with a line in `warnings`.
+std::vector<BenchShape> benchShapes(bool quick, std::vector<std::string>& warnings);
+
+/// One pose of a body relative to flat water at y = 0.
+struct BenchPose {
+    std::string id;          ///< "d0.30_h20": draft fraction and heel in degrees
+    double draftFraction = 0; ///< submerged part of the posed body's height, 0..1
+    double heelDegrees = 0;   ///< rotation about the body's x axis (the boat's roll axis), degrees
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity(); ///< mesh frame → world
+};
+
+/// Draft × heel sweep: the mesh is rotated by the heel about x through its bounding-box centre, then moved
+/// so that the water plane y = 0 cuts its vertical extent at each draft fraction (0 = lowest point, 1 = top).
+std::vector<BenchPose> benchPoses(const TriangleMesh& mesh, const std::vector<double>& draftFractions,
+                                  const std::vector<double>& heelDegrees);
+
+/// Length of the diagonal of the mesh's axis-aligned bounding box (mesh frame), m.
+double boundingBoxDiagonal(const TriangleMesh& mesh);
+
+}  // namespace buoyancy::bench

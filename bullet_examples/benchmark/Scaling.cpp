@@ -1,0 +1,210 @@
+#include "benchmark/Scaling.h"
+
+#include "bullet/btBuoyancyAction.h"
+#include "bullet/btBuoyancyWorld.h"
+#include "bullet/btBuoyantBodyBuilder.h"
+#include "water/btGerstnerWaterSurface.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#ifdef BUOYANCY_BENCH_OPENMP
+#include <omp.h>
+#endif
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <ostream>
+#include <stdexcept>
+
+namespace buoyancy::bench {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Runs every body's btBuoyancyAction once per substep, across threads. The first action runs alone: it
+/// advances the shared water clock (btBuoyancyWorld::beginSubstepIfNew); the others then only read it and
+/// touch their own body, so they can run concurrently. Below 9 bodies the loop stays on one thread (an idle
+/// OpenMP worker spin-waiting between substeps would only steal the main thread's core).
+class ParallelBuoyancy : public btActionInterface {
+public:
+    std::vector<btBuoyancyAction*> actions;
+    double seconds = 0;
+    void updateAction(btCollisionWorld* world, btScalar dt) override {
+        const auto t0 = Clock::now();
+        if (!actions.empty()) actions[0]->updateAction(world, dt);
+        const int n = int(actions.size());
+#ifdef BUOYANCY_BENCH_OPENMP
+#pragma omp parallel for schedule(static) if (n > 8)
+#endif
+        for (int i = 1; i < n; ++i) actions[i]->updateAction(world, dt);
+        seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    }
+    void debugDraw(btIDebugDraw*) override {}
+};
+
+/// The sea of issue 9's P3: four waves, amplitudes 0.2–1 m, wavelengths 10–60 m.
+std::vector<btGerstnerWave> sea() {
+    std::vector<btGerstnerWave> w(4);
+    w[0] = {1.0, 60.0, 1.0, 0.0, 0.5, 0.0};
+    w[1] = {0.6, 35.0, 0.8, 0.6, 0.5, 1.3};
+    w[2] = {0.35, 20.0, -0.3, 1.0, 0.5, 2.1};
+    w[3] = {0.2, 10.0, 0.6, -0.8, 0.5, 0.4};
+    return w;
+}
+
+}  // namespace
+
+bool scalingHasOpenMP() {
+#ifdef BUOYANCY_BENCH_OPENMP
+    return true;
+#else
+    return false;
+#endif
+}
+
+std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& model, const ScalingOptions& o,
+                                   std::ostream& log) {
+    std::vector<ScalingRow> rows;
+    const auto shape = btBuoyancyShape::create(mesh);  // the library's default settings
+    const std::string method = std::string(btBuoyancyMethodName(shape->getMethod())) +
+                               (shape->getMethod() == btBuoyancyMethod::ExactMesh ? "" : "-" + std::to_string(shape->getTextureSize()));
+    Eigen::Vector3d lo = mesh.vertices.front(), hi = lo;
+    for (const auto& v : mesh.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    const double spacing = 4.0 * (hi - lo).maxCoeff();  // four body lengths
+    const btGerstnerWaterSurface water(sea());
+    const double dt = 1.0 / o.substepsPerSecond;
+    for (int threads : o.threads) {
+        if (threads > 1 && !scalingHasOpenMP()) {
+            log << "  scaling: " << threads << " threads skipped (built without OpenMP)\n";
+            continue;
+        }
+#ifdef BUOYANCY_BENCH_OPENMP
+        omp_set_num_threads(threads);
+#endif
+        for (int n : o.bodies) {
+            btDefaultCollisionConfiguration config;
+            btCollisionDispatcher dispatcher(&config);
+            btDbvtBroadphase broadphase;
+            btSequentialImpulseConstraintSolver solver;
+            btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
+            world.setGravity(btVector3(0, btScalar(-9.81), 0));
+            btBuoyancyWorld buoyancy(&water, 1000.0, 9.81);
+            std::vector<std::unique_ptr<btBuoyantBody>> bodies;
+            std::vector<std::unique_ptr<btBuoyancyAction>> actions;
+            ParallelBuoyancy batch;
+            btBuoyantBodySettings bs;
+            bs.density = 500.0;
+            const int side = int(std::ceil(std::sqrt(double(n))));
+            for (int i = 0; i < n; ++i) {
+                btTransform t = btTransform::getIdentity();
+                const double yaw = 0.7 * i;  // varied headings
+                t.setRotation(btQuaternion(btVector3(0, 1, 0), btScalar(yaw)));
+                t.setOrigin(btVector3(btScalar(spacing * (i % side)), 0, btScalar(spacing * (i / side))));
+                bodies.push_back(std::make_unique<btBuoyantBody>(shape, bs, t));
+                world.addRigidBody(bodies.back()->getRigidBody());
+                actions.push_back(std::make_unique<btBuoyancyAction>(*bodies.back(), &buoyancy));
+                batch.actions.push_back(actions.back().get());
+            }
+            world.addAction(&batch);
+            const int perFrame = 4;  // 60 frames/s × 4 substeps
+            world.stepSimulation(btScalar(dt), 1, btScalar(dt));  // untimed first substep
+            batch.seconds = 0;
+            const double substeps = std::max(double(o.minSubsteps), std::min(o.simSeconds / dt, o.maxBodySubsteps / n));
+            const long frames = std::max(1L, std::lround(substeps / perFrame));
+            long contacts = 0;
+            const auto t0 = Clock::now();
+            for (long f = 0; f < frames; ++f) {
+                world.stepSimulation(btScalar(perFrame * dt), perFrame, btScalar(dt));
+                for (int m = 0; m < dispatcher.getNumManifolds(); ++m)
+                    if (dispatcher.getManifoldByIndexInternal(m)->getNumContacts() > 0) ++contacts;
+            }
+            const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+            world.removeAction(&batch);
+            for (auto& b : bodies) world.removeRigidBody(b->getRigidBody());
+            actions.clear();
+
+            ScalingRow r;
+            r.model = model;
+            r.triangles = mesh.triangleCount();
+            r.method = method;
+            r.bodies = n;
+            r.threads = threads;
+            r.substeps = frames * perFrame;
+            r.simSeconds = double(r.substeps) * dt;
+            r.wallSeconds = wall;
+            r.buoyancySeconds = batch.seconds;
+            r.realtimeFactor = r.simSeconds / wall;
+            r.nsPerBodySubstepTotal = 1e9 * wall / (double(n) * double(r.substeps));
+            r.nsPerBodySubstepBuoyancy = 1e9 * batch.seconds / (double(n) * double(r.substeps));
+            r.contacts = contacts;
+            rows.push_back(r);
+            log << "  scaling " << model << " x" << n << ", " << threads << " thread(s): " << r.nsPerBodySubstepTotal
+                << " ns/body-substep total, " << r.nsPerBodySubstepBuoyancy << " buoyancy; real-time factor "
+                << r.realtimeFactor << '\n';
+        }
+    }
+    return rows;
+}
+
+std::string scalingBreakdownMarkdown(const TriangleMesh& mesh, std::ostream& log) {
+    const btGerstnerWaterSurface water(sea());
+    const std::size_t n = 16384;
+    std::vector<double> x(n), y(n), z(n), h(n), u(n), v(n), w(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        x[i] = 0.37 * double(i % 128);
+        z[i] = 0.53 * double(i / 128);
+        y[i] = -0.5;
+    }
+    auto timeIt = [&](auto&& f) {
+        double best = 1e300;
+        for (int r = 0; r < 5; ++r) {
+            const auto t0 = Clock::now();
+            f();
+            best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+        }
+        return 1e9 * best / double(n);
+    };
+    const double nsH = timeIt([&] { water.heights(x.data(), z.data(), n, 1.0, h.data()); });
+    const double nsV = timeIt([&] { water.velocities(x.data(), y.data(), z.data(), n, 1.0, u.data(), v.data(), w.data()); });
+    const auto shape = btBuoyancyShape::create(mesh);
+    const bool exact = shape->getMethod() == btBuoyancyMethod::ExactMesh;
+    const std::size_t hydro = exact ? mesh.vertices.size() : shape->getSamples().size();
+    const std::size_t drag = shape->getDragSamples().size();
+    // Hydrostatics queries heights at `hydro` points; drag re-queries heights (exact-mesh only) and velocities
+    // at `drag` points (btBuoyancyAction::updateAction).
+    const double heightQueries = double(hydro) + (exact ? double(drag) : 0.0);
+    const double waterNs = heightQueries * nsH + double(drag) * nsV;
+    char b[1024];
+    std::snprintf(b, sizeof b,
+                  "- Where the time goes (scaling model, %s): the 4-wave Gerstner sea costs %.0f ns per height query and "
+                  "%.0f ns per velocity query (batches of 16384, one thread). Per body-substep the default makes "
+                  "%.0f height queries (%zu %s%s) and %zu velocity queries (drag samples): ≈ %.0f µs of water "
+                  "queries alone, against a budget of ≈ 7 µs per body-substep for P3.\n",
+                  btBuoyancyMethodName(shape->getMethod()), nsH, nsV, heightQueries, hydro,
+                  exact ? "mesh vertices" : "samples", exact ? (" + " + std::to_string(drag) + " drag samples").c_str() : "",
+                  drag, waterNs / 1000.0);
+    log << "  " << b;
+    return b;
+}
+
+void writeScalingCsv(const std::string& path, const std::vector<ScalingRow>& rows) {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + path);
+    std::fprintf(f, "model,triangles,method,bodies,threads,substeps,sim_seconds,wall_seconds,buoyancy_seconds,"
+                    "realtime_factor,ns_per_body_substep_total,ns_per_body_substep_buoyancy,ns_per_body_substep_bullet,"
+                    "contact_manifolds\n");
+    for (const ScalingRow& r : rows)
+        std::fprintf(f, "%s,%zu,%s,%d,%d,%ld,%.4f,%.4f,%.4f,%.4g,%.1f,%.1f,%.1f,%ld\n", r.model.c_str(), r.triangles,
+                     r.method.c_str(), r.bodies, r.threads, r.substeps, r.simSeconds, r.wallSeconds, r.buoyancySeconds,
+                     r.realtimeFactor, r.nsPerBodySubstepTotal, r.nsPerBodySubstepBuoyancy,
+                     r.nsPerBodySubstepTotal - r.nsPerBodySubstepBuoyancy, r.contacts);
+    if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace buoyancy::bench

@@ -1,0 +1,60 @@
+#pragma once
+/// @file Scaling.h
+/// Issue 9's scaling run (and goal P3): N bodies of one model in a 4-wave Gerstner sea at 240 substeps/s,
+/// colliding through their convex hulls, spread four body lengths apart; buoyancy of all bodies computed
+/// by one Bullet action that runs the per-body btBuoyancyActions across OpenMP threads (the library is not
+/// threaded; Debian's Bullet has no task scheduler, so Bullet's own step stays on one thread).
+
+#include "mesh/TriangleMesh.h"
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace buoyancy::bench {
+
+/// What to run.
+struct ScalingOptions {
+    std::vector<int> bodies{1, 10, 100, 1000}; ///< body counts
+    std::vector<int> threads{1, 2};            ///< OpenMP thread counts for the buoyancy actions
+    double simSeconds = 1.0;                   ///< simulated time per run at most, s (after one untimed substep)
+    /// At most this many body-substeps are timed per run (the substep count is cut for many bodies, never
+    /// below minSubsteps): the cost per body-substep is what is measured.
+    double maxBodySubsteps = 8000;
+    int minSubsteps = 4;                       ///< at least this many substeps per run
+    int substepsPerSecond = 240;               ///< fixed substep rate
+};
+
+/// One row of scaling.csv.
+struct ScalingRow {
+    std::string model;            ///< model id
+    std::size_t triangles = 0;    ///< triangles of the model
+    std::string method;           ///< the resolved default method (and N)
+    int bodies = 0;               ///< body count
+    int threads = 0;              ///< OpenMP threads for buoyancy
+    long substeps = 0;            ///< substeps timed
+    double simSeconds = 0;        ///< simulated time, s
+    double wallSeconds = 0;       ///< wall-clock time of stepSimulation, s
+    double buoyancySeconds = 0;   ///< of which in the buoyancy actions, s
+    double realtimeFactor = 0;    ///< simSeconds / wallSeconds (≥ 1: real time)
+    double nsPerBodySubstepTotal = 0;    ///< wall / (bodies × substeps), ns
+    double nsPerBodySubstepBuoyancy = 0; ///< buoyancy wall / (bodies × substeps), ns
+    long contacts = 0;            ///< contact manifolds with points, summed over substeps
+};
+
+/// True when the benchmark was built with OpenMP (threads > 1 possible).
+bool scalingHasOpenMP();
+
+/// Run every (bodies, threads) pair with the model at the library's default settings, density 500 kg/m³.
+std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& model, const ScalingOptions& options,
+                                   std::ostream& log);
+
+/// Where a body-substep of the scaling run goes (Markdown lines): the cost of one height and one velocity
+/// query of the run's Gerstner sea (batch of 16384 points), and how many of each the model's default
+/// configuration makes per substep (mesh vertices or samples for the hydrostatics, drag samples for drag).
+std::string scalingBreakdownMarkdown(const TriangleMesh& mesh, std::ostream& log);
+
+/// Write scaling.csv. @throws std::runtime_error when the file cannot be written
+void writeScalingCsv(const std::string& path, const std::vector<ScalingRow>& rows);
+
+}  // namespace buoyancy::bench

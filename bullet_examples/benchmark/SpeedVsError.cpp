@@ -1,0 +1,206 @@
+#include "benchmark/SpeedVsError.h"
+
+#include "benchmark/ComparisonMethods.h"
+#include "oracles/PolyhedralOracle.h"
+
+#include "bullet/btBuoyancyAction.h"
+#include "bullet/btBuoyancyWorld.h"
+#include "bullet/btBuoyantBodyBuilder.h"
+#include "integrals/Hydrostatics.h"
+#include "water/btWaterSurface.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iomanip>
+#include <ostream>
+#include <stdexcept>
+
+namespace buoyancy::bench {
+
+namespace {
+
+constexpr double kRho = 1000.0;
+constexpr double kG = 9.81;
+
+/// Exact reference of one shape at one pose (DESIGN-NOTES 5: plane clipping of the same mesh).
+struct PoseReference {
+    BenchPose pose;
+    double volume = 0;
+    Eigen::Vector3d cob = Eigen::Vector3d::Zero();
+    Eigen::Vector3d ref = Eigen::Vector3d::Zero();     ///< the body's exact centre of volume, world
+    Eigen::Vector3d torque = Eigen::Vector3d::Zero();  ///< Archimedes: (C_B − ref) × (0, ρ g V_sub, 0)
+};
+
+struct ShapeReference {
+    double volume = 0, diagonal = 0;
+    std::vector<PoseReference> poses;
+};
+
+ShapeReference reference(const BenchShape& s, const SpeedErrorOptions& o) {
+    ShapeReference r;
+    const auto dry = buoyancy_test::oracleDryMoments(s.mesh.vertices, s.mesh.triangles);
+    r.volume = dry.volume;
+    r.diagonal = boundingBoxDiagonal(s.mesh);
+    for (const BenchPose& p : benchPoses(s.mesh, o.drafts, o.heels)) {
+        PoseReference pr;
+        pr.pose = p;
+        const auto sub = buoyancy_test::oracleSubmergedMoments(buoyancy_test::oraclePose(s.mesh.vertices, p.pose),
+                                                               s.mesh.triangles, 0.0);
+        pr.volume = sub.volume;
+        pr.cob = sub.centroid;
+        pr.ref = p.pose * dry.centroid;
+        pr.torque = (pr.cob - pr.ref).cross(Eigen::Vector3d(0, kRho * kG * pr.volume, 0));
+        r.poses.push_back(pr);
+    }
+    return r;
+}
+
+/// Errors of one evaluation against the reference, in the table's units.
+void fillErrors(SpeedErrorRow& row, const ShapeReference& sr, const PoseReference& pr, double volume,
+                const Eigen::Vector3d& cob, const Eigen::Vector3d& torque) {
+    row.volume_error_pct = 100.0 * std::abs(volume - pr.volume) / sr.volume;
+    row.cob_error_pct = volume > 0 ? 100.0 * (cob - pr.cob).norm() / sr.diagonal : 100.0;
+    row.torque_error_pct = 100.0 * (torque - pr.torque).norm() / (kRho * kG * sr.volume * sr.diagonal);
+}
+
+void logConfig(std::ostream& log, const std::vector<SpeedErrorRow>& rows, std::size_t first, double setupSeconds) {
+    if (rows.size() <= first) return;
+    double v = 0, c = 0, ns = 0;
+    for (std::size_t i = first; i < rows.size(); ++i) {
+        v = std::max(v, rows[i].volume_error_pct);
+        c = std::max(c, rows[i].cob_error_pct);
+        ns += rows[i].ns_per_body_substep;
+    }
+    ns /= double(rows.size() - first);
+    const SpeedErrorRow& r = rows[first];
+    log << "  " << std::left << std::setw(11) << r.shape << std::setw(15) << r.method << std::setw(5) << r.texture << ' '
+        << std::setw(18) << r.variant << std::right << std::setw(8) << r.samples << " samples  worst V "
+        << std::setprecision(3) << std::scientific << v << " %  CoB " << c << " %  " << std::fixed
+        << std::setprecision(0) << std::setw(9) << ns << " ns/substep  (setup " << std::setprecision(2) << setupSeconds
+        << " s)" << std::defaultfloat << std::setprecision(6) << '\n';
+}
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+std::vector<SpeedErrorRow> runSpeedVsError(const std::vector<BenchShape>& shapes, const SpeedErrorOptions& o,
+                                           std::ostream& log) {
+    std::vector<SpeedErrorRow> rows;
+    const btFlatWaterSurface water(0.0);
+    for (const BenchShape& s : shapes) {
+        const ShapeReference sr = reference(s, o);
+        log << s.name << " (" << s.mesh.triangleCount() << " triangles, V = " << sr.volume << " m3)\n";
+        auto base = [&](const std::string& method, int texture, const std::string& variant, std::size_t samples) {
+            SpeedErrorRow r;
+            r.shape = s.name;
+            r.triangles = s.mesh.triangleCount();
+            r.method = method;
+            r.texture = texture;
+            r.variant = variant;
+            r.samples = samples;
+            return r;
+        };
+
+        // Library configurations: the shape as btBuoyancyShape builds it, errors from the same integrals the
+        // action calls, time from the action itself.
+        auto library = [&](const std::string& label, btBuoyancySettings settings) {
+            const auto t0 = std::chrono::steady_clock::now();
+            std::shared_ptr<const btBuoyancyShape> shape;
+            try {
+                shape = btBuoyancyShape::create(s.mesh, settings);
+            } catch (const std::exception& e) {
+                log << "  " << s.name << ' ' << label << ' ' << settings.textureSize << ": skipped (" << e.what() << ")\n";
+                return;
+            }
+            const double setup = secondsSince(t0);
+            SingleBodyRig rig(shape);
+            btBuoyancyAction action(rig.body(), &rig.buoyancyWorld(), btBuoyancySettings(settings));
+            const bool mesh = shape->getMethod() == btBuoyancyMethod::ExactMesh;
+            const int texture = mesh ? 0 : shape->getTextureSize();
+            const std::size_t samples = mesh ? s.mesh.triangleCount() : shape->getSamples().size();
+            std::string variant;
+            if (label == "default")
+                variant = std::string(btBuoyancyMethodName(shape->getMethod())) + (mesh ? "" : "-" + std::to_string(texture));
+            SampleWorkspace ws;
+            const std::size_t first = rows.size();
+            for (const PoseReference& pr : sr.poses) {
+                const HydrostaticsResult h =
+                    mesh ? clippedHydrostatics(shape->getMesh(), pr.pose.pose, water, 0.0, kRho, kG, pr.ref)
+                         : sampledHydrostatics(shape->getSamples(), pr.pose.pose, water, 0.0, kRho, kG, pr.ref, ws);
+                SpeedErrorRow row = base(label, texture, variant, samples);
+                row.pose = pr.pose.id;
+                fillErrors(row, sr, pr, h.submerged_volume, h.centre_of_buoyancy, h.torque);
+                row.ns_per_body_substep = rig.nsPerSubstep(action, pr.pose.pose, o.timing);
+                rows.push_back(row);
+            }
+            logConfig(log, rows, first, setup);
+        };
+        library("default", btBuoyancySettings());
+        for (const char* m : {"texel-centre", "exact-coverage"})
+            for (int n : o.textures) {
+                btBuoyancySettings st;
+                st.method = btBuoyancyMethodFromName(m);
+                st.textureSize = n;
+                library(m, st);
+            }
+        {
+            btBuoyancySettings st;
+            st.method = btBuoyancyMethod::ExactMesh;
+            library("exact-mesh", st);
+        }
+
+        // Comparison methods (not in the library), timed on the body of an exact-mesh shape (no bake).
+        btBuoyancySettings meshSettings;
+        meshSettings.method = btBuoyancyMethod::ExactMesh;
+        SingleBodyRig rig(btBuoyancyShape::create(s.mesh, meshSettings));
+        const Eigen::Isometry3d meshInCom = rig.meshInCom();
+        auto comparison = [&](const std::string& method, const ProbeSet* probes, const FaceSet* faces, double setup) {
+            ComparisonAction action(rig.body().getRigidBody(), probes, faces, &rig.water(), meshInCom, kRho, kG);
+            ComparisonWorkspace ws;
+            const std::size_t first = rows.size();
+            for (const PoseReference& pr : sr.poses) {
+                const ComparisonResult c =
+                    probes ? probeHydrostatics(*probes, pr.pose.pose, water, 0.0, kRho, kG, pr.ref, ws)
+                           : downwardFaceHydrostatics(*faces, pr.pose.pose, water, 0.0, kRho, kG, pr.ref, ws);
+                SpeedErrorRow row = base(method, 0, probes ? probes->variant : "", probes ? probes->size() : faces->size());
+                row.pose = pr.pose.id;
+                fillErrors(row, sr, pr, c.volume, c.centre, c.torque);
+                row.ns_per_body_substep = rig.nsPerSubstep(action, pr.pose.pose, o.timing);
+                rows.push_back(row);
+            }
+            logConfig(log, rows, first, setup);
+        };
+        for (int n : o.hullProbes) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const ProbeSet p = makeHullProbes(s.mesh, n, sr.volume);
+            comparison("probes", &p, nullptr, secondsSince(t0));
+        }
+        for (int n : o.gridProbes) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const ProbeSet p = makeGridProbes(s.mesh, n, sr.volume);
+            comparison("probes", &p, nullptr, secondsSince(t0));
+        }
+        const FaceSet faces = makeFaceSet(s.mesh);
+        comparison("downward-faces", nullptr, &faces, 0.0);
+    }
+    return rows;
+}
+
+void writeSpeedVsErrorCsv(const std::string& path, const std::vector<SpeedErrorRow>& rows) {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + path);
+    std::fprintf(f, "shape,triangles,method,texture,variant,samples,pose,volume_error_pct,cob_error_pct,"
+                    "torque_error_pct,ns_per_body_substep\n");
+    for (const SpeedErrorRow& r : rows)
+        std::fprintf(f, "%s,%zu,%s,%d,%s,%zu,%s,%.6g,%.6g,%.6g,%.1f\n", r.shape.c_str(), r.triangles, r.method.c_str(),
+                     r.texture, r.variant.c_str(), r.samples, r.pose.c_str(), r.volume_error_pct, r.cob_error_pct,
+                     r.torque_error_pct, r.ns_per_body_substep);
+    if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace buoyancy::bench

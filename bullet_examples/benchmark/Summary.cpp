@@ -1,0 +1,155 @@
+#include "benchmark/Summary.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+namespace buoyancy::bench {
+
+namespace {
+
+std::string fmt(const char* f, double x) {
+    char b[64];
+    std::snprintf(b, sizeof b, f, x);
+    return b;
+}
+
+std::string label(const ConfigStats& c) {
+    std::string s = c.method;
+    if (c.method == "default") return s + " (" + c.variant + ")";
+    if (c.texture > 0) s += " " + std::to_string(c.texture);
+    if (!c.variant.empty()) s += " " + c.variant;
+    return s;
+}
+
+/// The concrete configuration the default resolved to ("exact-mesh" or "exact-coverage-512").
+bool isDefaultsOwn(const ConfigStats& c, const ConfigStats& def) {
+    if (c.method == "default") return true;
+    const std::string own = c.method + (c.texture > 0 ? "-" + std::to_string(c.texture) : "");
+    return own == def.variant;
+}
+
+}  // namespace
+
+std::vector<ConfigStats> reduceConfigs(const std::vector<SpeedErrorRow>& rows) {
+    std::vector<ConfigStats> out;
+    std::map<std::string, std::pair<std::size_t, int>> index;  // key -> (position, pose count)
+    for (const SpeedErrorRow& r : rows) {
+        const std::string key = r.shape + "|" + r.method + "|" + std::to_string(r.texture) + "|" + r.variant;
+        auto it = index.find(key);
+        if (it == index.end()) {
+            ConfigStats c;
+            c.shape = r.shape;
+            c.method = r.method;
+            c.variant = r.variant;
+            c.triangles = r.triangles;
+            c.samples = r.samples;
+            c.texture = r.texture;
+            out.push_back(c);
+            it = index.emplace(key, std::make_pair(out.size() - 1, 0)).first;
+        }
+        ConfigStats& c = out[it->second.first];
+        c.worstVolumePct = std::max(c.worstVolumePct, r.volume_error_pct);
+        c.worstCobPct = std::max(c.worstCobPct, r.cob_error_pct);
+        c.worstTorquePct = std::max(c.worstTorquePct, r.torque_error_pct);
+        const int n = ++it->second.second;
+        c.meanNs += (r.ns_per_body_substep - c.meanNs) / n;
+    }
+    return out;
+}
+
+std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::vector<ScalingRow>& scaling) {
+    const std::vector<ConfigStats> all = reduceConfigs(rows);
+    std::vector<std::string> shapes;
+    for (const auto& c : all)
+        if (std::find(shapes.begin(), shapes.end(), c.shape) == shapes.end()) shapes.push_back(c.shape);
+    auto find = [&](const std::string& shape, const std::string& method, int texture) -> const ConfigStats* {
+        for (const auto& c : all)
+            if (c.shape == shape && c.method == method && (texture < 0 || c.texture == texture)) return &c;
+        return nullptr;
+    };
+    std::ostringstream md;
+    md << "## Headline: worst errors over the poses, mean time per body-substep (drag on, one thread)\n\n"
+       << "| shape | triangles | configuration | samples | volume err % | CoB err % | torque err % | ns/body-substep | time / default |\n"
+       << "|---|---:|---|---:|---:|---:|---:|---:|---:|\n";
+    for (const auto& s : shapes) {
+        const ConfigStats* def = find(s, "default", -1);
+        for (const ConfigStats* c : {def, find(s, "texel-centre", 1024), find(s, "exact-coverage", 128), find(s, "exact-mesh", 0)}) {
+            if (!c) continue;
+            md << "| " << s << " | " << c->triangles << " | " << label(*c) << " | " << c->samples << " | "
+               << fmt("%.2g", c->worstVolumePct) << " | " << fmt("%.2g", c->worstCobPct) << " | "
+               << fmt("%.2g", c->worstTorquePct) << " | " << fmt("%.0f", c->meanNs) << " | "
+               << (def ? fmt("%.2f", c->meanNs / def->meanNs) : "") << " |\n";
+        }
+    }
+
+    md << "\n## P1: nothing at least as accurate is more than 10 % faster than the default\n\n";
+    bool p1 = true;
+    for (const auto& s : shapes) {
+        const ConfigStats* def = find(s, "default", -1);
+        if (!def) continue;
+        const bool high = def->triangles >= 10000;
+        std::vector<std::string> beat, close;
+        for (const auto& c : all) {
+            if (c.shape != s || isDefaultsOwn(c, *def)) continue;
+            const bool asAccurate = c.worstVolumePct <= def->worstVolumePct && c.worstCobPct <= def->worstCobPct;
+            if (!asAccurate) continue;
+            if (c.meanNs * 1.1 < def->meanNs) beat.push_back(label(c) + " (" + fmt("%.2f", c.meanNs / def->meanNs) + "× the time)");
+            else if (high && c.meanNs < 2.0 * def->meanNs)
+                close.push_back(label(c) + " (" + fmt("%.2f", c.meanNs / def->meanNs) + "× the time)");
+        }
+        const bool ok = beat.empty() && close.empty();
+        p1 = p1 && ok;
+        md << "- " << s << " (" << def->triangles << " triangles, default = " << def->variant << ", "
+           << fmt("%.2g", def->worstVolumePct) << " % / " << fmt("%.2g", def->worstCobPct) << " %, "
+           << fmt("%.0f", def->meanNs) << " ns): " << (ok ? "holds" : "FAILS");
+        for (const auto& b : beat) md << "; as accurate and faster: " << b;
+        for (const auto& b : close) md << "; as accurate and less than 2× slower (high-poly rule): " << b;
+        md << '\n';
+    }
+    md << "\nP1 overall: " << (p1 ? "holds" : "does not hold") << "\n";
+
+    md << "\n## P2: at ≤ 0.1 % volume error, cost ≤ 1/200 of texel-centre 1024²\n\n";
+    bool p2 = true;
+    int p2Shapes = 0;
+    for (const auto& s : shapes) {
+        const ConfigStats* tc = find(s, "texel-centre", 1024);
+        const ConfigStats* def = find(s, "default", -1);
+        if (!tc || !def) continue;
+        const ConfigStats* cheapest = nullptr;
+        for (const auto& c : all)
+            if (c.shape == s && c.worstVolumePct <= 0.1 && (!cheapest || c.meanNs < cheapest->meanNs)) cheapest = &c;
+        const double defRatio = def->meanNs / tc->meanNs;
+        const bool ok = def->worstVolumePct <= 0.1 && defRatio <= 1.0 / 200;
+        p2 = p2 && ok;
+        ++p2Shapes;
+        md << "- " << s << ": texel-centre 1024 " << fmt("%.0f", tc->meanNs) << " ns (" << fmt("%.2g", tc->worstVolumePct)
+           << " % volume); default " << fmt("%.0f", def->meanNs) << " ns = 1/" << fmt("%.0f", 1.0 / defRatio)
+           << " at " << fmt("%.2g", def->worstVolumePct) << " % → " << (ok ? "holds" : "FAILS");
+        if (cheapest)
+            md << "; cheapest at ≤ 0.1 %: " << label(*cheapest) << " " << fmt("%.0f", cheapest->meanNs) << " ns = 1/"
+               << fmt("%.0f", tc->meanNs / cheapest->meanNs);
+        md << '\n';
+    }
+    if (p2Shapes == 0) md << "Not measured in this run (needs texel-centre 1024; `buoyancy bench` without --quick).\n";
+    else md << "\nP2 overall: " << (p2 ? "holds" : "does not hold") << "\n";
+
+    md << "\n## P3: 1,000 bodies in real time on 2 cores\n\n";
+    const ScalingRow* p3 = nullptr;
+    for (const auto& r : scaling)
+        if (r.bodies >= 1000 && r.threads == 2) p3 = &r;
+    if (!p3) {
+        md << "Not measured in this run (needs 1,000 bodies and 2 threads; `buoyancy bench` without --quick).\n";
+    } else {
+        md << "- " << p3->model << " (" << p3->triangles << " triangles, default = " << p3->method << "), "
+           << p3->bodies << " bodies, 2 threads: " << fmt("%.3f", p3->wallSeconds) << " s wall for "
+           << fmt("%.3f", p3->simSeconds) << " s simulated → real-time factor " << fmt("%.3f", p3->realtimeFactor)
+           << " (" << fmt("%.0f", p3->nsPerBodySubstepTotal) << " ns per body-substep, of which buoyancy "
+           << fmt("%.0f", p3->nsPerBodySubstepBuoyancy) << ") → " << (p3->realtimeFactor >= 1 ? "holds" : "FAILS")
+           << "; needs " << fmt("%.1f", 1.0 / p3->realtimeFactor) << "× less work to hold.\n";
+    }
+    return md.str();
+}
+
+}  // namespace buoyancy::bench

@@ -1,0 +1,31 @@
+#pragma once
+/// @file BenchCommand.h
+/// `buoyancy bench [--quick] [--out DIR]`: issue 9's benchmark. Writes into DIR
+///   speed_vs_error.csv   every method × texture × shape × pose: errors against the exact clip and ns per
+///                        body-substep (drag on, one thread),
+///   fig9_sphere_volume.csv  the paper's Fig. 9 (sphere R = 0.5, volume against depth),
+///   scaling.csv          1…1000 bodies in Gerstner waves, 1 and 2 threads,
+///   summary.md           the headline table and goals P1–P3 as measured (also printed).
+/// --quick runs a reduced set (3 shapes, 2 textures, 4 poses, ≤ 100 bodies) in well under 30 s; plots are
+/// made from the CSVs by scripts/bench_plots.py (scripts/bench.sh runs both).
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace buoyancy::cli {
+
+/// Options of `buoyancy bench`.
+struct BenchOptions {
+    bool quick = false;            ///< the reduced, fast set (smoke test)
+    std::string out = "bench-results"; ///< output folder (created when missing)
+    std::string parts = "speed,fig9,scaling"; ///< which parts to run, comma-separated
+};
+
+/// Register the `bench` subcommand on `app`.
+void addBenchCommand(CLI::App& app, BenchOptions& options);
+
+/// Run the benchmark. @throws UsageError for bad options or an unwritable folder. @return kExitOk
+int runBench(const BenchOptions& options);
+
+}  // namespace buoyancy::cli
