@@ -62,7 +62,8 @@ void btBuoyancyAction::computeDrag(const Eigen::Vector3d& com, const Eigen::Vect
     const buoyancy::SurfaceSamples& s = m_shape->getDragSamples();
     const std::size_t n = s.size();
     const btWaterSurface& water = *m_world->getWater();
-    water.velocities(m_ws.wx.data(), m_ws.wy.data(), m_ws.wz.data(), n, time, m_ux.data(), m_uy.data(), m_uz.data());
+    water.velocitiesCached(m_ws.wx.data(), m_ws.wy.data(), m_ws.wz.data(), n, time, m_ux.data(), m_uy.data(),
+                           m_uz.data(), m_waterCache);
     const double kd = 0.5 * density * m_settings.dragCoefficient;
     const double kf = 0.5 * density * m_settings.skinFriction;
     const double kl = density * m_settings.linearDamping;
@@ -167,7 +168,8 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
             if (method == btBuoyancyMethod::ExactMesh) {
                 h = buoyancy::clippedHydrostatics(m_shape->getMesh(), pose, *water, time, rho, g, com);
             } else {
-                h = buoyancy::sampledHydrostatics(m_shape->getSamples(), pose, *water, time, rho, g, com, m_ws);
+                h = buoyancy::sampledHydrostatics(m_shape->getSamples(), pose, *water, time, rho, g, com, m_ws,
+                                                  &m_waterCache);
                 wsFilled = true;
             }
         } catch (const std::exception&) {
@@ -197,7 +199,8 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
         if (!wsFilled) {
             const buoyancy::SurfaceSamples& s = m_shape->getDragSamples();
             buoyancy::transformSamples(s, pose, m_ws);
-            water->heights(m_ws.wx.data(), m_ws.wz.data(), s.size(), time, m_ws.waterHeight.data());
+            water->heightsCached(m_ws.wx.data(), m_ws.wz.data(), s.size(), time, m_ws.waterHeight.data(),
+                                 m_waterCache);
         }
         computeDrag(com, v, w, rho, time, dragF, dragT, uMean);
     }

@@ -13,6 +13,7 @@
 #include "bullet/btBuoyancySettings.h"
 #include "bullet/btBuoyancyShape.h"
 #include "integrals/Hydrostatics.h"
+#include "water/btWaterSurface.h"
 
 #include <BulletDynamics/Dynamics/btActionInterface.h>
 #include <LinearMath/btTransform.h>
@@ -101,6 +102,8 @@ private:
     // Workspace sized once (no allocation per substep).
     buoyancy::SampleWorkspace m_ws;
     std::vector<double> m_ux, m_uy, m_uz;
+    /// Warm-start memory of the water queries on m_ws's points (heights, then velocities for drag).
+    btWaterQueryCache m_waterCache;
     /// Per drag sample: half its size, sqrt(area)/2, m; with the sample's tilt it gives the vertical half extent
     /// over which drag ramps from dry to wet (DESIGN-NOTES 2.4's wet fraction, applied to drag only).
     std::vector<double> m_dragHalfSize;

@@ -28,9 +28,10 @@ bool methodUsesTexture(BuoyancyMethod method);
 /// the shapes and models we test), 512 for texel-centre (the paper's own smallest size), 0 for exact-mesh.
 int defaultTextureSize(BuoyancyMethod method);
 
-/// Largest triangle count for which Default picks exact-mesh. Up to this size clipping every triangle costs
-/// no more than the samples of a 128² texture would, and it is exact in flat water.
-constexpr std::size_t kDefaultExactMeshMaxTriangles = 16384;
+/// Largest triangle count for which Default picks exact-mesh: it is exact in flat water, and measured
+/// (docs/benchmarks, issue 9) 12–15× cheaper per body-substep than exact-coverage 512² on 17–20k-triangle
+/// meshes; the two costs meet at roughly 10⁵–2·10⁵ triangles.
+constexpr std::size_t kDefaultExactMeshMaxTriangles = 131072;
 
 /// The library's default: exact-mesh for meshes of at most kDefaultExactMeshMaxTriangles triangles,
 /// otherwise exact-coverage at 512² (its O(h²) error is then ≈ 16× below the 128² figures, which the default goals of issue 3 need on curved meshes with a generated atlas). Methods other than

@@ -10,6 +10,7 @@
 #include <vector>
 
 class btWaterSurface;
+struct btWaterQueryCache;
 
 namespace buoyancy {
 
@@ -46,10 +47,11 @@ HydrostaticsResult integrateWettedSamples(const SampleWorkspace& ws, double flui
                                           const Eigen::Vector3d& torqueReference);
 
 /// Convenience: transform, query the surface once (batch), integrate.
+/// @param cache  optional per-body warm-start memory for the height query (btWaterSurface::heightsCached)
 HydrostaticsResult sampledHydrostatics(const SurfaceSamples& samples, const Eigen::Isometry3d& pose,
                                        const btWaterSurface& water, double time, double fluidDensity,
                                        double gravity, const Eigen::Vector3d& torqueReference,
-                                       SampleWorkspace& ws);
+                                       SampleWorkspace& ws, btWaterQueryCache* cache = nullptr);
 
 /// Exact-mesh method: clip every triangle of the posed mesh against the water (exact for flat water;
 /// on waves each triangle is cut against the plane through its corners' water heights), and integrate

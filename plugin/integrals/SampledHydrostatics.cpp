@@ -104,7 +104,7 @@ HydrostaticsResult integrateWettedSamples(const SampleWorkspace& ws, double flui
 HydrostaticsResult sampledHydrostatics(const SurfaceSamples& samples, const Eigen::Isometry3d& pose,
                                        const btWaterSurface& water, double time, double fluidDensity,
                                        double gravity, const Eigen::Vector3d& torqueReference,
-                                       SampleWorkspace& ws) {
+                                       SampleWorkspace& ws, btWaterQueryCache* cache) {
     if (!std::isfinite(fluidDensity) || fluidDensity < 0)
         throw std::invalid_argument("sampledHydrostatics: fluid density must be finite and ≥ 0, got " +
                                     std::to_string(fluidDensity));
@@ -128,7 +128,10 @@ HydrostaticsResult sampledHydrostatics(const SurfaceSamples& samples, const Eige
     water.heightBounds(lo[0], lo[2], hi[0], hi[2], time, hMin, hMax);
     if (lo[1] >= hMax) return HydrostaticsResult{};
 
-    water.heights(ws.wx.data(), ws.wz.data(), n, time, ws.waterHeight.data());  // one batch call per body
+    if (cache)  // one batch call per body
+        water.heightsCached(ws.wx.data(), ws.wz.data(), n, time, ws.waterHeight.data(), *cache);
+    else
+        water.heights(ws.wx.data(), ws.wz.data(), n, time, ws.waterHeight.data());
     HydrostaticsResult r = integrateWettedSamples(ws, fluidDensity, gravity, torqueReference);
     if (!std::isfinite(r.submerged_volume) || !r.force.allFinite() || !r.torque.allFinite() ||
         !r.centre_of_buoyancy.allFinite())

@@ -32,11 +32,22 @@ public:
     explicit btGerstnerWaterSurface(const std::vector<btGerstnerWave>& waves, double height = 0.0,
                                     double gravity = 9.81);
 
+    /// Each point's rest position is found from a cold start (x₀ = x), see restPosition.
     void heights(const double* x, const double* z, std::size_t n, double t, double* outHeight) const override;
     /// Orbital velocity of linear wave theory: the surface particle velocity of each wave (∂/∂t of the
     /// parametric surface above) scaled by min(1, e^{k_i (y − h)}), evaluated at the rest position of (x, z).
     void velocities(const double* x, const double* y, const double* z, std::size_t n, double t, double* outVx,
                     double* outVy, double* outVz) const override;
+    /// Fast path for bodies (one call per body per substep): the same Newton inversion to the same residual
+    /// (≤ 1e-9 m), started from each point's last displacement x − x₀ kept in `cache` (warm start). A point
+    /// that moved a few mm since the last call converges with one Newton step (two evaluations of the waves)
+    /// instead of 3–5 from a cold start. The cache is (re)initialised when its owner or size differ.
+    void heightsCached(const double* x, const double* z, std::size_t n, double t, double* outHeight,
+                       btWaterQueryCache& cache) const override;
+    /// velocities() warm-started from `cache`: right after heightsCached at the same points and time every
+    /// point is already converged, so each costs one evaluation of the waves.
+    void velocitiesCached(const double* x, const double* y, const double* z, std::size_t n, double t,
+                          double* outVx, double* outVy, double* outVz, btWaterQueryCache& cache) const override;
     /// h ± Σ A_i (independent of the rectangle).
     void heightBounds(double minX, double minZ, double maxX, double maxZ, double t, double& outMin,
                       double& outMax) const override;
@@ -56,7 +67,7 @@ public:
     /// @param outIterations  optional: iterations used
     void restPosition(double x, double z, double t, double& outX0, double& outZ0, int* outIterations = nullptr) const;
 
-    /// Iteration limit of restPosition.
+    /// Newton (or fallback) steps restPosition and the batch queries take at most.
     static constexpr int kMaxIterations = 50;
     /// Σ Q_i A_i k_i (< 1 for every accepted surface).
     double loopFactor() const { return m_loop; }
@@ -66,9 +77,19 @@ public:
     double amplitudeSum() const { return m_amplitudeSum; }
 
 private:
+    /// Per-wave constants, precomputed once (θ = kdx·x₀ + kdz·z₀ + (φ − ω t)).
     struct Wave {
         double a, k, omega, dx, dz, qa, phase;
+        double kdx, kdz;        ///< k d, 1/m
+        double qadx, qadz;      ///< Q A d, m
+        double jxx, jxz, jzz;   ///< Q A k d dᵀ (Jacobian term, times cos θ)
+        double aw, qaw;         ///< A ω, Q A ω, m/s (velocity amplitudes)
     };
+    /// Newton solve of x₀ − D(x₀) = (x, z) from the guess (x0, z0), updated in place; returns the steps taken.
+    /// ySum = Σ A cos θ at the returned x₀; with Velocity, vel[0..2] = orbital velocity there at height
+    /// yRel = y − h (decay e^{k min(0, yRel)}).
+    template <bool Velocity>
+    int solve(double x, double z, double t, double& x0, double& z0, double& ySum, double yRel, double* vel) const;
     std::vector<Wave> m_waves;
     double m_height;
     double m_amplitudeSum = 0;

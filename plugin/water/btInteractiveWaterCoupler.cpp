@@ -2,6 +2,8 @@
 
 #include "bullet/btBuoyancyAction.h"
 #include "bullet/btBuoyancyWorld.h"
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
 #include "water/btInteractiveWaterSurface.h"
 
 #include <algorithm>
@@ -21,13 +23,19 @@ void btInteractiveWaterCoupler::updateAction(btCollisionWorld*, btScalar deltaTi
         const btBuoyancyResult& r = a->getLastResult();
         Footprint now;
         if (r.submergedVolume > 0 && std::isfinite(r.submergedVolume)) {
-            now.x = double(r.centreOfBuoyancy.x());
-            now.z = double(r.centreOfBuoyancy.z());
+            // Footprint: the disc of the body's bounding sphere under its bounds centre. It covers every point
+            // at which the body reads the water (mesh corners, samples), so the raised ring is always outside
+            // the body, and its radius never changes, so consecutive substeps move the same cells. (A disc
+            // from the waterline area left a box's corners in the raised ring: the body read the water it had
+            // just pushed up, sank less, and the loop heaped water under it; the radius also jumped whenever
+            // the waterline area did, e.g. when a dropped crate went fully under.)
+            const btTransform pose = a->getRigidBody()->getWorldTransform() * a->getMeshInComFrame();
+            const Eigen::Vector3d& c = a->getShape()->getBoundsCentre();
+            const btVector3 centre = pose * btVector3(btScalar(c.x()), btScalar(c.y()), btScalar(c.z()));
+            now.x = double(centre.x());
+            now.z = double(centre.z());
             now.volume = r.submergedVolume;
-            // Footprint radius from the waterline area (a disc of the same area); a fully submerged body
-            // has none, so use the radius of a sphere of its displaced volume.
-            const double fromArea = std::sqrt(std::max(r.waterlineArea, 0.0) / M_PI);
-            now.radius = fromArea > 0 ? fromArea : std::cbrt(3 * now.volume / (4 * M_PI));
+            now.radius = a->getShape()->getBoundsRadius();
         }
         Footprint& before = m_last[a];
         if (before.volume != 0) m_water->addVolumeChange(before.x, before.z, -m_coupling * before.volume, before.radius);

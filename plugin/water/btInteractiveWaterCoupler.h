@@ -2,9 +2,10 @@
 /// @file btInteractiveWaterCoupler.h
 /// The two-way seam between btBuoyancyAction and btInteractiveWaterSurface: a btActionInterface added to
 /// the dynamics world AFTER the bodies' buoyancy actions (Bullet calls actions in the order added, once
-/// per substep). Each substep it reads every registered action's last result (displaced volume, centre of
-/// buoyancy, waterline area) and moves each body's displaced water out of its old footprint and into its
-/// new one (addVolumeChange), then steps the grid by dt. The actions' hot path is untouched: they only
+/// per substep). Each substep it reads every registered action's last displaced volume and moves that water
+/// out of the body's old footprint and into its new one (addVolumeChange), then steps the grid by dt. The
+/// footprint is the disc of the body's bounding sphere under its bounds centre: constant in size, and covering
+/// every point where the body reads the water, so the raised ring is never under the body. The actions' hot path is untouched: they only
 /// see a height field.
 ///
 /// Usage:  btInteractiveWaterSurface water(20, 20, 128, 2.0, 0.1);  btBuoyancyWorld ctx(&water);

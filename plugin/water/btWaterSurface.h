@@ -5,6 +5,24 @@
 /// per sample. World y is up; the water is a height field y = f(x, z, t).
 
 #include <cstddef>
+#include <vector>
+
+class btWaterSurface;
+
+/// Per-caller memory kept between batch queries (one per body and point set, owned by the caller, never used by
+/// two threads at once). A surface whose query is an iterative solve keeps its last solution here to warm-start
+/// the next query (Gerstner: each point's horizontal displacement x − x₀). Contents are surface-specific; the
+/// surface resets them when `owner` or `n` do not match. Surfaces that need nothing ignore it.
+struct btWaterQueryCache {
+    const btWaterSurface* owner = nullptr;  ///< surface that filled the arrays (nullptr: empty)
+    std::size_t n = 0;                      ///< number of points the arrays hold
+    std::vector<double> a, b;               ///< per-point state, surface-specific
+    /// Forget everything (the next query starts cold).
+    void reset() {
+        owner = nullptr;
+        n = 0;
+    }
+};
 
 /// Abstract water surface. Implementations must be thread-safe for concurrent const calls.
 class btWaterSurface {
@@ -20,6 +38,22 @@ public:
     /// Water velocity at n points below the surface (currents, orbital velocity), m/s. Default: still water.
     virtual void velocities(const double* x, const double* y, const double* z, std::size_t n, double t,
                             double* outVx, double* outVy, double* outVz) const;
+
+    /// heights() with per-caller warm-start memory: same results (to the surface's documented tolerance), faster
+    /// when the points move little between calls. Default: ignores the cache.
+    virtual void heightsCached(const double* x, const double* z, std::size_t n, double t, double* outHeight,
+                               btWaterQueryCache& cache) const {
+        (void)cache;
+        heights(x, z, n, t, outHeight);
+    }
+
+    /// velocities() with per-caller warm-start memory (after heightsCached at the same points and time, a
+    /// Gerstner surface needs no further iteration). Default: ignores the cache.
+    virtual void velocitiesCached(const double* x, const double* y, const double* z, std::size_t n, double t,
+                                  double* outVx, double* outVy, double* outVz, btWaterQueryCache& cache) const {
+        (void)cache;
+        velocities(x, y, z, n, t, outVx, outVy, outVz);
+    }
 
     /// Lower and upper bound of the surface height over the world x–z rectangle [minX,maxX]×[minZ,maxZ] at
     /// time t, m. A body entirely above outMax or below outMin is skipped or takes a constant result.

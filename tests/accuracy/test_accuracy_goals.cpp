@@ -81,10 +81,10 @@ TEST_CASE("accuracy: exact-coverage 128 meets the texture-path goals on analytic
     for (const auto& m : analyticShapes()) checkTextureGoals(m);
 }
 
-TEST_CASE("accuracy: default settings on high-poly meshes (exact-coverage 512) meet the goals", "[accuracy]") {
+TEST_CASE("accuracy: default settings on high-poly meshes (exact-coverage 512) meet the goals", "[accuracy][slow]") {
     // Above kDefaultExactMeshMaxTriangles the default switches to the texture path: these meshes take it.
-    const std::vector<NamedMesh> meshes = {{"sphere 192x96", makeSphereMesh(0.5, 192, 96)},
-                                           {"torus 160x64", makeTorusMesh(1.0, 0.3, 160, 64)}};
+    const std::vector<NamedMesh> meshes = {{"sphere 384x192", makeSphereMesh(0.5, 384, 192)},
+                                           {"torus 512x160", makeTorusMesh(1.0, 0.3, 512, 160)}};
     for (const auto& m : meshes) {
         REQUIRE(m.mesh.triangleCount() > kDefaultExactMeshMaxTriangles);
         auto r = measureAccuracy(m.mesh, BuoyancyMethod::Default, 0);

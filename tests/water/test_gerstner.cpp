@@ -142,3 +142,55 @@ TEST_CASE("gerstner: looping or invalid waves are rejected with a clear message"
     btGerstnerWave zeroDir{0.5, 10.0, 0.0, 0.0, 0.5, 0.0};
     CHECK_THROWS_WITH(btGerstnerWaterSurface({zeroDir}), Catch::Contains("waves[0].direction"));
 }
+
+TEST_CASE("gerstner: warm-started batch queries equal the exact (cold) inversion", "[water][gerstner]") {
+    // A body's samples moving and turning over 240 substeps: heightsCached/velocitiesCached (warm start from
+    // the cache) against heights/velocities (cold start) and against the test's own forward map.
+    const double g = 9.81, h = -0.2;
+    for (double loop : {0.3, 0.9}) {
+        const auto ws = seaState(loop);
+        btGerstnerWaterSurface s(ws, h, g);
+        std::mt19937 rng(3);
+        std::uniform_real_distribution<double> u(-2, 2);
+        const std::size_t n = 300;
+        std::vector<double> bx(n), bz(n), by(n), x(n), y(n), z(n), hf(n), hc(n), vf[3], vc[3];
+        for (auto* v : {vf, vc})
+            for (int k = 0; k < 3; ++k) v[k].resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            bx[i] = u(rng);
+            bz[i] = u(rng);
+            by[i] = 0.5 * u(rng);
+        }
+        btWaterQueryCache cache;
+        double worstH = 0, worstV = 0, worstResidual = 0;
+        for (int step = 0; step < 240; ++step) {
+            const double t = 3.0 + step / 240.0, a = 0.7 * t;
+            for (std::size_t i = 0; i < n; ++i) {
+                x[i] = 1.5 * t + std::cos(a) * bx[i] - std::sin(a) * bz[i];
+                z[i] = -0.5 * t + std::sin(a) * bx[i] + std::cos(a) * bz[i];
+                y[i] = h + by[i];
+            }
+            if (step == 120)  // a jump (teleported body): the warm start is far off and must still converge
+                for (std::size_t i = 0; i < n; ++i) x[i] += 17.0;
+            s.heightsCached(x.data(), z.data(), n, t, hc.data(), cache);
+            s.velocitiesCached(x.data(), y.data(), z.data(), n, t, vc[0].data(), vc[1].data(), vc[2].data(), cache);
+            s.heights(x.data(), z.data(), n, t, hf.data());
+            s.velocities(x.data(), y.data(), z.data(), n, t, vf[0].data(), vf[1].data(), vf[2].data());
+            REQUIRE(cache.n == n);
+            for (std::size_t i = 0; i < n; ++i) {
+                worstH = std::max(worstH, std::abs(hc[i] - hf[i]));
+                for (int k = 0; k < 3; ++k) worstV = std::max(worstV, std::abs(vc[k][i] - vf[k][i]));
+                // The cache holds x − x₀: map x₀ forward and compare with (x, z) and the height.
+                double fx, fy, fz;
+                forward(ws, h, g, x[i] - cache.a[i], z[i] - cache.b[i], t, fx, fy, fz);
+                worstResidual = std::max(worstResidual, std::hypot(fx - x[i], fz - z[i]));
+                worstH = std::max(worstH, std::abs(fy - hc[i]));
+            }
+        }
+        INFO("sum QAk = " << loop << ": worst height difference " << worstH << " m, velocity " << worstV
+                          << " m/s, residual " << worstResidual << " m");
+        CHECK(worstResidual <= 1e-6);
+        CHECK(worstH <= 1e-6);
+        CHECK(worstV <= 1e-6);
+    }
+}
