@@ -1,6 +1,7 @@
 #include "cli/SceneFile.h"
 
 #include "cli/CliErrors.h"
+#include "cli/SceneJsonReader.h"
 
 #include <nlohmann/json.hpp>
 
@@ -17,69 +18,13 @@ namespace {
 
 using json = nlohmann::json;
 
-/// Strict reader: every accessor names the full key path in its error.
-class Reader {
+/// The scene reader: SceneJsonReader whose failures are usage errors naming the file (exit 2).
+class Reader : public SceneJsonReader {
 public:
-    explicit Reader(std::string source) : m_source(std::move(source)) {}
-
-    [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-        throw UsageError(m_source + ": " + key + ": " + what);
-    }
-
-    void requireObject(const json& j, const std::string& key) const {
-        if (!j.is_object()) fail(key.empty() ? "(top level)" : key, "expected an object");
-    }
-
-    void allowKeys(const json& j, const std::string& key, std::initializer_list<const char*> allowed) const {
-        std::set<std::string> ok(allowed.begin(), allowed.end());
-        for (auto it = j.begin(); it != j.end(); ++it)
-            if (!ok.count(it.key())) fail(join(key, it.key()), "unknown key");
-    }
-
-    static std::string join(const std::string& parent, const std::string& key) {
-        return parent.empty() ? key : parent + "." + key;
-    }
-
-    /// Number in [lo, hi] (strict lower bound when lowOpen).
-    double number(const json& j, const std::string& key, double lo, double hi, bool lowOpen = false) const {
-        if (!j.is_number()) fail(key, "expected a number");
-        const double v = j.get<double>();
-        if (!std::isfinite(v) || (lowOpen ? !(v > lo) : !(v >= lo)) || !(v <= hi)) {
-            std::ostringstream os;
-            os << "value " << v << " out of range " << (lowOpen ? "(" : "[") << lo << ", " << hi << "]";
-            fail(key, os.str());
-        }
-        return v;
-    }
-
-    int integer(const json& j, const std::string& key, int lo, int hi) const {
-        if (!j.is_number_integer() && !j.is_number_unsigned()) fail(key, "expected an integer");
-        const long long v = j.get<long long>();
-        if (v < lo || v > hi) fail(key, "value " + std::to_string(v) + " out of range [" + std::to_string(lo) + ", " +
-                                            std::to_string(hi) + "]");
-        return int(v);
-    }
-
-    Eigen::Vector3d vec3(const json& j, const std::string& key, double lo = -1e9, double hi = 1e9,
-                         bool lowOpen = false) const {
-        if (!j.is_array() || j.size() != 3) fail(key, "expected an array of 3 numbers");
-        Eigen::Vector3d v;
-        for (int k = 0; k < 3; ++k) v[k] = number(j[k], key + "[" + std::to_string(k) + "]", lo, hi, lowOpen);
-        return v;
-    }
-
-    std::string string(const json& j, const std::string& key) const {
-        if (!j.is_string()) fail(key, "expected a string");
-        return j.get<std::string>();
-    }
-
-    bool boolean(const json& j, const std::string& key) const {
-        if (!j.is_boolean()) fail(key, "expected true or false");
-        return j.get<bool>();
-    }
-
-private:
-    std::string m_source;
+    explicit Reader(const std::string& source)
+        : SceneJsonReader([source](const std::string& key, const std::string& what) {
+              throw UsageError(source + ": " + key + ": " + what);
+          }) {}
 };
 
 constexpr double kBig = 1e6;  // bounds for lengths, m, and speeds

@@ -1,4 +1,5 @@
 #include "cli/SceneGraph.h"
+#include "cli/SceneJsonReader.h"
 
 #include <nlohmann/json.hpp>
 
@@ -14,51 +15,13 @@ namespace {
 
 using json = nlohmann::json;
 
-struct R {
-    const SceneFailFn& fail;
-
-    void object(const json& j, const std::string& key) const {
-        if (!j.is_object()) fail(key, "expected an object");
-    }
-    void keys(const json& j, const std::string& key, std::initializer_list<const char*> allowed) const {
-        std::set<std::string> ok(allowed.begin(), allowed.end());
-        for (auto it = j.begin(); it != j.end(); ++it)
-            if (!ok.count(it.key())) fail(key + "." + it.key(), "unknown key");
-    }
-    double number(const json& j, const std::string& key, double lo, double hi, bool lowOpen = false) const {
-        if (!j.is_number()) fail(key, "expected a number");
-        const double v = j.get<double>();
-        if (!std::isfinite(v) || (lowOpen ? !(v > lo) : !(v >= lo)) || !(v <= hi)) {
-            std::ostringstream os;
-            os << "value " << v << " out of range " << (lowOpen ? "(" : "[") << lo << ", " << hi << "]";
-            fail(key, os.str());
-        }
-        return v;
-    }
-    int integer(const json& j, const std::string& key, long long lo, long long hi) const {
-        if (!j.is_number_integer() && !j.is_number_unsigned()) fail(key, "expected an integer");
-        const long long v = j.get<long long>();
-        if (v < lo || v > hi)
-            fail(key, "value " + std::to_string(v) + " out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-        return int(v);
-    }
-    Eigen::Vector3d vec3(const json& j, const std::string& key, double lo, double hi, bool lowOpen = false) const {
-        if (!j.is_array() || j.size() != 3) fail(key, "expected an array of 3 numbers");
-        Eigen::Vector3d v;
-        for (int k = 0; k < 3; ++k) v[k] = number(j[k], key + "[" + std::to_string(k) + "]", lo, hi, lowOpen);
-        return v;
-    }
-    std::string string(const json& j, const std::string& key) const {
-        if (!j.is_string()) fail(key, "expected a string");
-        return j.get<std::string>();
-    }
-};
+using R = SceneJsonReader;
 
 constexpr double kBig = 1e6;
 
 void readGraph(const R& r, const json& g, const std::string& key, SceneFlooding& out) {
-    r.object(g, key);
-    r.keys(g, key, {"nodes", "edges", "seed", "auto", "ingress", "discharge_coefficient", "viscosity", "flow",
+    r.requireObject(g, key);
+    r.allowKeys(g, key, {"nodes", "edges", "seed", "auto", "ingress", "discharge_coefficient", "viscosity", "flow",
                     "diffusivity"});
     WaterGraph& graph = out.graph;
     if (g.contains("seed")) graph.seed = std::uint64_t(r.integer(g["seed"], key + ".seed", 0, 2147483647));
@@ -83,8 +46,8 @@ void readGraph(const R& r, const json& g, const std::string& key, SceneFlooding&
         if (g.contains("nodes") || g.contains("edges")) r.fail(key + ".auto", "give either \"auto\" or \"nodes\"/\"edges\", not both");
         const json& a = g["auto"];
         const std::string ak = key + ".auto";
-        r.object(a, ak);
-        r.keys(a, ak, {"nodes", "resolution", "fill"});
+        r.requireObject(a, ak);
+        r.allowKeys(a, ak, {"nodes", "resolution", "fill"});
         out.automatic = true;
         if (a.contains("nodes")) out.autoSettings.nodes = r.integer(a["nodes"], ak + ".nodes", 1, 256);
         if (a.contains("resolution")) out.autoSettings.resolution = r.integer(a["resolution"], ak + ".resolution", 4, 256);
@@ -97,8 +60,8 @@ void readGraph(const R& r, const json& g, const std::string& key, SceneFlooding&
     for (std::size_t i = 0; i < g["nodes"].size(); ++i) {
         const json& n = g["nodes"][i];
         const std::string nk = key + ".nodes[" + std::to_string(i) + "]";
-        r.object(n, nk);
-        r.keys(n, nk, {"name", "position", "capacity", "water", "size"});
+        r.requireObject(n, nk);
+        r.allowKeys(n, nk, {"name", "position", "capacity", "water", "size"});
         WaterNode node;
         if (!n.contains("name")) r.fail(nk + ".name", "missing");
         node.name = r.string(n["name"], nk + ".name");
@@ -121,8 +84,8 @@ void readGraph(const R& r, const json& g, const std::string& key, SceneFlooding&
         for (std::size_t i = 0; i < g["edges"].size(); ++i) {
             const json& e = g["edges"][i];
             const std::string ek = key + ".edges[" + std::to_string(i) + "]";
-            r.object(e, ek);
-            r.keys(e, ek, {"from", "to", "radius", "length", "permeability"});
+            r.requireObject(e, ek);
+            r.allowKeys(e, ek, {"from", "to", "radius", "length", "permeability"});
             WaterEdge edge;
             for (const char* end : {"from", "to"}) {
                 if (!e.contains(end)) r.fail(ek + "." + end, "missing (a node name)");
@@ -179,8 +142,8 @@ SceneFlooding readSceneFlooding(const json& body, const std::string& key, const 
         const std::string pk = key + ".permeability";
         if (!out.enabled) fail(pk, "needs a \"water_graph\" (where would the water go?)");
         const json& p = body["permeability"];
-        r.object(p, pk);
-        r.keys(p, pk, {"regions", "texture"});
+        r.requireObject(p, pk);
+        r.allowKeys(p, pk, {"regions", "texture"});
         if (p.contains("texture"))
             fail(pk + ".texture", "permeability textures are not supported in this build (no image loader); use \"regions\"");
         if (!p.contains("regions")) fail(pk + ".regions", "missing (an array of {\"centre\", \"radius\", \"value\"})");
@@ -188,8 +151,8 @@ SceneFlooding readSceneFlooding(const json& body, const std::string& key, const 
         for (std::size_t i = 0; i < p["regions"].size(); ++i) {
             const json& g = p["regions"][i];
             const std::string rk = pk + ".regions[" + std::to_string(i) + "]";
-            r.object(g, rk);
-            r.keys(g, rk, {"centre", "radius", "value", "node"});
+            r.requireObject(g, rk);
+            r.allowKeys(g, rk, {"centre", "radius", "value", "node"});
             PermeabilityRegion region;
             if (!g.contains("centre")) fail(rk + ".centre", "missing");
             if (!g.contains("radius")) fail(rk + ".radius", "missing");

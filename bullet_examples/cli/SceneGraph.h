@@ -3,6 +3,7 @@
 /// The body keys "water_graph" and "permeability" of a scene (issue 6; docs/scene-format.md): parsing
 /// with errors that name the file and key, and building the graph and the permeable samples of a body.
 
+#include "cli/SceneJsonReader.h"  // SceneFailFn
 #include "graph/AutoWaterGraph.h"
 #include "graph/WaterGraph.h"
 #include "graph/WaterIngress.h"
@@ -14,9 +15,6 @@
 #include <vector>
 
 namespace buoyancy::cli {
-
-/// Reports a bad key: (key path, what is wrong); must throw.
-using SceneFailFn = std::function<void(const std::string& key, const std::string& what)>;
 
 /// One body's water graph and permeability as read from the scene.
 struct SceneFlooding {
