@@ -25,7 +25,7 @@ echo "== sanitizer tests"
 timing_tests='checked quickly|generated atlas: fast on'
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1 \
    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-   ctest -LE "long|slow" -E "$timing_tests" --output-on-failure -j"$jobs" --timeout 1800)
+   ctest -LE "long|slow" -E "$timing_tests" --output-on-failure -j"$jobs" --timeout 600)
 lap "sanitizer tests"
 
 echo "== FPE tests (trap invalid, divide-by-zero, overflow) on the float Release build of scripts/test.sh"
@@ -36,7 +36,7 @@ echo "== FPE tests (trap invalid, divide-by-zero, overflow) on the float Release
 # the code handles it) are left out; tests/reliability masks them with ScopedFpTrapsOff instead.
 nan_on_purpose=': hydrostatics: bad input gives clear exceptions'
 (cd build && BULLET_BUOYANCY_TRAP_FP=1 ctest -L 'integrals|bake|bullet|accuracy|water|reliability' \
-   -E "$nan_on_purpose" --output-on-failure -j"$jobs" --timeout 1800)
+   -E "$nan_on_purpose" --output-on-failure -j"$jobs" --timeout 600)
 lap "FPE tests"
 
 echo "== short fuzz run"
