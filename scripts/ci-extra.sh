@@ -13,6 +13,7 @@ bash scripts/install-deps.sh --extra
 jobs=${JOBS:-2}
 t0=$SECONDS
 times=()
+failed=()   # each part runs and reports even when an earlier one failed
 lap() { times+=("$1: $((SECONDS - t0)) s"); t0=$SECONDS; }
 
 echo "== sanitizer build (ASan + UBSan)"
@@ -25,7 +26,7 @@ echo "== sanitizer tests"
 timing_tests='checked quickly|generated atlas: fast on'
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1 \
    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-   ctest -LE "long|slow" -E "$timing_tests" --output-on-failure -j"$jobs" --timeout 600)
+   ctest -LE "long|slow" -E "$timing_tests" --output-on-failure -j"$jobs" --timeout 600) || failed+=("sanitizer tests")
 lap "sanitizer tests"
 
 echo "== FPE tests (trap invalid, divide-by-zero, overflow) on the float Release build of scripts/test.sh"
@@ -36,11 +37,15 @@ echo "== FPE tests (trap invalid, divide-by-zero, overflow) on the float Release
 # the code handles it) are left out; tests/reliability masks them with ScopedFpTrapsOff instead.
 nan_on_purpose=': hydrostatics: bad input gives clear exceptions'
 (cd build && BULLET_BUOYANCY_TRAP_FP=1 ctest -L 'integrals|bake|bullet|accuracy|water|reliability' \
-   -E "$nan_on_purpose" --output-on-failure -j"$jobs" --timeout 600)
+   -E "$nan_on_purpose" --output-on-failure -j"$jobs" --timeout 600) || failed+=("FPE tests")
 lap "FPE tests"
 
 echo "== short fuzz run"
-bash scripts/fuzz-run.sh "${FUZZ_SECONDS:-30}"
+bash scripts/fuzz-run.sh "${FUZZ_SECONDS:-30}" || failed+=("fuzz")
 lap "fuzz (build + run)"
 
 printf '%s\n' "${times[@]}"
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "ci-extra: failed parts: ${failed[*]}"
+  exit 1
+fi
