@@ -55,6 +55,28 @@ void pushProbe(ProbeSet& s, const Eigen::Vector3d& c, double share) {
     s.radius.push_back(std::cbrt(3.0 * share / (4.0 * M_PI)));
 }
 
+
+/// Sum of vertical point forces f_i at points c_i (the comparison methods push straight up): total force,
+/// torque about `ref`, the volume ρ g V = Σ f and its centre Σ f c / Σ f.
+struct VerticalForceSum {
+    double fy = 0;
+    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+    Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+    void add(double f, const Eigen::Vector3d& c, const Eigen::Vector3d& ref) {
+        fy += f;
+        moment += f * c;
+        torque += (c - ref).cross(Eigen::Vector3d(0, f, 0));
+    }
+    ComparisonResult result(double rho, double g) const {
+        ComparisonResult r;
+        r.force = Eigen::Vector3d(0, fy, 0);
+        r.torque = torque;
+        r.volume = fy / (rho * g);
+        r.centre = fy > 0 ? Eigen::Vector3d(moment / fy) : Eigen::Vector3d::Zero();
+        return r;
+    }
+};
+
 }  // namespace
 
 void ComparisonWorkspace::resize(std::size_t n) {
@@ -153,22 +175,14 @@ ComparisonResult probeHydrostatics(const ProbeSet& p, const Eigen::Isometry3d& p
         ws.wz[i] = w.z();
     }
     water.heights(ws.wx.data(), ws.wz.data(), n, time, ws.h.data());
-    ComparisonResult r;
-    double fy = 0;
-    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+    VerticalForceSum sum;
     for (std::size_t i = 0; i < n; ++i) {
         const double v = sphereSubmerged(p.radius[i], ws.h[i] - ws.wy[i]);
         if (v <= 0) continue;
         const double f = rho * g * v;
-        fy += f;
-        const Eigen::Vector3d c(ws.wx[i], ws.wy[i], ws.wz[i]);
-        moment += f * c;
-        r.torque += (c - ref).cross(Eigen::Vector3d(0, f, 0));
+        sum.add(f, Eigen::Vector3d(ws.wx[i], ws.wy[i], ws.wz[i]), ref);
     }
-    r.force = Eigen::Vector3d(0, fy, 0);
-    r.volume = fy / (rho * g);
-    r.centre = fy > 0 ? Eigen::Vector3d(moment / fy) : Eigen::Vector3d::Zero();
-    return r;
+    return sum.result(rho, g);
 }
 
 ComparisonResult downwardFaceHydrostatics(const FaceSet& fs, const Eigen::Isometry3d& pose, const btWaterSurface& water,
@@ -189,22 +203,14 @@ ComparisonResult downwardFaceHydrostatics(const FaceSet& fs, const Eigen::Isomet
         ws.az[i] = a.z();
     }
     water.heights(ws.wx.data(), ws.wz.data(), n, time, ws.h.data());
-    ComparisonResult r;
-    double fy = 0;
-    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+    VerticalForceSum sum;
     for (std::size_t i = 0; i < n; ++i) {
         const double depth = ws.h[i] - ws.wy[i];
         if (!(depth > 0) || !(ws.ay[i] < 0)) continue;
         const double f = rho * g * depth * (-ws.ay[i]);
-        fy += f;
-        const Eigen::Vector3d c(ws.wx[i], ws.wy[i], ws.wz[i]);
-        moment += f * c;
-        r.torque += (c - ref).cross(Eigen::Vector3d(0, f, 0));
+        sum.add(f, Eigen::Vector3d(ws.wx[i], ws.wy[i], ws.wz[i]), ref);
     }
-    r.force = Eigen::Vector3d(0, fy, 0);
-    r.volume = fy / (rho * g);
-    r.centre = fy > 0 ? Eigen::Vector3d(moment / fy) : Eigen::Vector3d::Zero();
-    return r;
+    return sum.result(rho, g);
 }
 
 ComparisonAction::ComparisonAction(btRigidBody* body, const ProbeSet* probes, const FaceSet* faces,
