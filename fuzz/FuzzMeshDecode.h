@@ -9,6 +9,10 @@
 ///           coordinates (/255, so exactly 0 and 1 occur)
 /// Vertex indices out of range cannot be produced (our loaders never make them either); everything else
 /// (degenerate, open, non-manifold, inside-out, duplicated, NaN) can.
+#include "FuzzContract.h"
+
+#include "mesh/MeshImport.h"
+#include "mesh/MeshRepair.h"
 #include "mesh/TriangleMesh.h"
 
 #include <cstddef>
@@ -65,6 +69,19 @@ inline TriangleMesh decodeSoup(ByteReader& in, std::size_t maxTriangles = 4096) 
             }
     }
     return mesh;
+}
+
+/// The preamble of the mesh targets: decode a soup (at most maxTriangles) and run prepareMesh on it.
+/// @return false when prepareMesh rejected it with a MeshError (the expected end of bad input); true with
+/// `mesh` repaired and checked otherwise
+inline bool decodePreparedSoup(ByteReader& in, std::size_t maxTriangles, TriangleMesh& mesh) {
+    mesh = decodeSoup(in, maxTriangles);
+    try {
+        prepareMesh(mesh, "fuzz.obj");
+    } catch (const MeshError&) {
+        return false;
+    }
+    return true;
 }
 
 }  // namespace buoyancy::fuzz

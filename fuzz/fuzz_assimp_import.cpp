@@ -5,6 +5,8 @@
 /// frames in libassimp) and checks that the `buoyancy` CLI, which imports in a child process, turns the
 /// same file into a clear error. Known assimp crashes: third_party_notes/assimp.md.
 /// Contract checked here (our code): failures end as MeshError; accepted soups have valid indices.
+#include "FuzzContract.h"
+
 #include "mesh/MeshImport.h"
 #include "mesh/MeshRepair.h"
 
@@ -15,12 +17,7 @@
 #include <string>
 #include <unistd.h>
 
-namespace {
-[[noreturn]] void violated(const char* what) {
-    std::fprintf(stderr, "contract violated: %s\n", what);
-    std::abort();
-}
-}  // namespace
+using buoyancy::fuzz::violated;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     if (size < 1) return 0;

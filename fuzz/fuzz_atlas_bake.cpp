@@ -9,20 +9,13 @@
 #include "atlas/UvLayout.h"
 #include "bake/BakeSamples.h"
 #include "integrals/MassProperties.h"
-#include "mesh/MeshImport.h"
-#include "mesh/MeshRepair.h"
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 
-namespace {
-[[noreturn]] void violated(const char* what) {
-    std::fprintf(stderr, "contract violated: %s\n", what);
-    std::abort();
-}
-}  // namespace
+using buoyancy::fuzz::violated;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     buoyancy::fuzz::ByteReader in(data, size);
@@ -31,12 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const bool preferModelUvs = (options & 1) != 0;
     const buoyancy::BakeMethod method =
         (options & 2) ? buoyancy::BakeMethod::TexelCentre : buoyancy::BakeMethod::ExactCoverage;
-    buoyancy::TriangleMesh mesh = buoyancy::fuzz::decodeSoup(in, 512);
-    try {
-        buoyancy::prepareMesh(mesh, "fuzz.obj");
-    } catch (const buoyancy::MeshError&) {
-        return 0;
-    }
+    buoyancy::TriangleMesh mesh;
+    if (!buoyancy::fuzz::decodePreparedSoup(in, 512, mesh)) return 0;
     buoyancy::UvLayout layout;
     try {
         layout = buoyancy::chooseUvLayout(mesh, textureSize, preferModelUvs);

@@ -3,6 +3,8 @@
 /// arbitrary text, without running anything. Contract checked: bad input ends as cli::UsageError naming
 /// the file; an accepted scene has settings the library itself accepts (btBuoyancySettings::validate,
 /// btBuoyantBodySettings::validate), finite numbers, dt > 0 and a unit rotation axis.
+#include "FuzzContract.h"
+
 #include "cli/CliErrors.h"
 #include "cli/SceneFile.h"
 
@@ -13,12 +15,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace {
-[[noreturn]] void violated(const char* what) {
-    std::fprintf(stderr, "contract violated: %s\n", what);
-    std::abort();
-}
-}  // namespace
+using buoyancy::fuzz::violated;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

@@ -5,8 +5,12 @@ mesh_prepare / atlas_bake: soups in the byte layout of FuzzMeshDecode.h (closed 
 UVs, inside-out cube, open box, two disjoint cubes, cube inside a cube, raw-double cube with a NaN).
 scene_json: the example scenes of bullet_examples/scenes plus a few edge cases.
 assimp_import: small allow-listed files from Debian's assimp-testmodels, behind their extension byte.
+water_graph_json: the bodies with "water_graph" of bullet_examples/scenes plus hand-made graphs (every key,
+  the automatic graph, diffusion, box nodes, permeability regions, a density map).
+permeability_image: tiny images in every format stb_image reads (PNG RGB/RGBA/grey, BMP, TGA, PPM, PGM),
+  written here byte by byte.
 """
-import json, os, shutil, struct, glob
+import json, os, shutil, struct, glob, zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -107,5 +111,66 @@ def main():
         write("assimp_import", rel.replace("/", "_"), bytes([exts.index(ext)]) + data)
 
 
+def graph_seeds():
+    seeds = {}
+    for path in sorted(glob.glob(os.path.join(ROOT, "bullet_examples", "scenes", "*.json"))):
+        with open(path) as f:
+            scene = json.load(f)
+        for i, body in enumerate(scene.get("bodies", [])):
+            keys = {k: body[k] for k in ("water_graph", "permeability", "density_map") if k in body}
+            if keys and not isinstance(keys.get("water_graph"), str):
+                seeds[os.path.splitext(os.path.basename(path))[0] + "_body%d" % i] = keys
+    two = {"nodes": [{"name": "a", "position": [0, -0.2, 0], "capacity": 0.2, "water": 0.05},
+                     {"name": "b", "position": [0.3, 0.1, 0], "capacity": 0.1, "size": [0.3, 0.2, 0.4]}],
+           "edges": [{"from": "a", "to": "b", "radius": 0.05, "length": 0.4, "permeability": 0.5}]}
+    seeds["two_nodes_regions"] = {"water_graph": two, "permeability": {"regions": [
+        {"centre": [0.5, 0, 0], "radius": 0.2, "value": 0.3, "node": "b"}, {"centre": [0, -0.5, 0], "radius": 0.1}]}}
+    seeds["all_graph_keys"] = {"water_graph": dict(two, seed=7, ingress="paper", flow="diffusion",
+                                                   discharge_coefficient=0.8, viscosity=0.002, diffusivity=0.01,
+                                                   water_inertia="points"),
+                               "permeability": {"regions": [{"centre": [0, 0, 0.5], "radius": 0.3}]}}
+    seeds["auto"] = {"water_graph": {"auto": {"nodes": 3, "resolution": 8, "fill": 0.5}, "seed": 3},
+                     "permeability": {"regions": [{"centre": [0, -0.5, 0], "radius": 0.3, "value": 1}]}}
+    seeds["graph_only"] = two  # the value of "water_graph" alone
+    seeds["texture_missing"] = {"water_graph": two, "permeability": {"texture": "holes.png", "filter": "nearest"}}
+    seeds["density_map"] = {"water_graph": two, "density_map": {
+        "base": 1, "spots": [{"direction": [0, -1, 0], "angle": 30, "value": 5}],
+        "rotation": {"axis": [0, 0, 1], "degrees_per_second": 10}, "update_interval": 0.2}}
+    return seeds
+
+
+def png(width, height, colour_type, rows):
+    """A PNG with 8-bit samples (colour type 0 grey, 2 RGB, 6 RGBA); rows: list of bytes without filter byte."""
+    def chunk(tag, body):
+        return struct.pack(">I", len(body)) + tag + body + struct.pack(">I", zlib.crc32(tag + body) & 0xffffffff)
+    raw = b"".join(b"\x00" + r for r in rows)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def image_seeds():
+    w, h = 4, 3
+    rgb = [b"".join(bytes((x * 80 % 256, y * 100, 7)) for x in range(w)) for y in range(h)]
+    rgba = [b"".join(bytes((x * 80 % 256, y * 100, 7, 255)) for x in range(w)) for y in range(h)]
+    grey = [bytes(x * 60 for x in range(w)) for _ in range(h)]
+    bmp_rows = b"".join(b"".join(bytes((7, y * 100, x * 80 % 256)) for x in range(w)) for y in range(h))  # BGR, 12 B/row
+    bmp = (b"BM" + struct.pack("<IHHI", 54 + len(bmp_rows), 0, 0, 54) +
+           struct.pack("<IiiHHIIiiII", 40, w, h, 1, 24, 0, len(bmp_rows), 2835, 2835, 0, 0) + bmp_rows)
+    tga = struct.pack("<BBBHHBHHHHBB", 0, 0, 2, 0, 0, 0, 0, 0, w, h, 24, 0) + bmp_rows
+    ppm = b"P6\n%d %d\n255\n" % (w, h) + b"".join(rgb)
+    pgm = b"P5\n%d %d\n255\n" % (w, h) + b"".join(grey)
+    return {"rgb.png": png(w, h, 2, rgb), "rgba.png": png(w, h, 6, rgba), "grey.png": png(w, h, 0, grey),
+            "one_texel.png": png(1, 1, 2, [b"\xff\x00\x00"]), "rgb.bmp": bmp, "rgb.tga": tga, "rgb.ppm": ppm,
+            "grey.pgm": pgm, "empty": b""}
+
+
+def extra_main():
+    for name, body in graph_seeds().items():
+        write("water_graph_json", name + ".json", json.dumps(body).encode())
+    for name, data in image_seeds().items():
+        write("permeability_image", name, data)
+
+
 if __name__ == "__main__":
     main()
+    extra_main()

@@ -10,6 +10,18 @@ PACKAGES=(
   catch2                   # Catch2 2.13 tests
   libcli11-dev             # CLI11 command-line parsing
   nlohmann-json3-dev       # JSON (CLI output, scene files)
+  # issue 8: offscreen pictures (`buoyancy run --png`), the scene browser and its test under Xvfb
+  libopengl-dev libgl-dev  # OpenGL 3.3 core entry points (GLVND libOpenGL) and GL/glcorearb.h
+  libegl-dev libegl-mesa0 libgl1-mesa-dri  # EGL surfaceless + Mesa's llvmpipe: rendering without a display
+  libstb-dev               # stb_image_write (PNG) and stb_image (tests)
+  libglfw3-dev             # the browser's window
+  libimgui-dev             # Dear ImGui 1.86 with its GLFW/OpenGL 3 backends (the browser's panels)
+  xvfb xauth               # xvfb-run: the browser test and scripts/pictures.sh without a display
+  ocl-icd-opencl-dev       # OpenCL ICD loader (libOpenCL) for the OpenCL backend (issue 7)
+  opencl-c-headers         # OpenCL C headers
+  opencl-clhpp-headers     # OpenCL C++ bindings <CL/opencl.hpp>
+  pocl-opencl-icd          # PoCL: an OpenCL CPU device, so the OpenCL tests run without a GPU
+  libstb-dev               # stb_image / stb_image_write: permeability textures (plugin/graph/PermeabilityTexture.cpp)
 )
 # `scripts/install-deps.sh --extra`: also what scripts/ci-extra.sh needs (clang + libFuzzer runtime for
 # fuzz/, llvm-symbolizer for sanitizer stack traces). The default run does not need them.

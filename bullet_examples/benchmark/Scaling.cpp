@@ -45,8 +45,9 @@ public:
     void debugDraw(btIDebugDraw*) override {}
 };
 
-/// The sea of issue 9's P3: four waves, amplitudes 0.2–1 m, wavelengths 10–60 m.
-std::vector<btGerstnerWave> sea() {
+}  // namespace
+
+std::vector<btGerstnerWave> p3Sea() {
     std::vector<btGerstnerWave> w(4);
     w[0] = {1.0, 60.0, 1.0, 0.0, 0.5, 0.0};
     w[1] = {0.6, 35.0, 0.8, 0.6, 0.5, 1.3};
@@ -55,6 +56,8 @@ std::vector<btGerstnerWave> sea() {
     return w;
 }
 
+namespace {
+std::vector<btGerstnerWave> sea() { return p3Sea(); }
 }  // namespace
 
 bool scalingHasOpenMP() {
@@ -68,7 +71,7 @@ bool scalingHasOpenMP() {
 std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& model, const ScalingOptions& o,
                                    std::ostream& log) {
     std::vector<ScalingRow> rows;
-    const auto shape = btBuoyancyShape::create(mesh);  // the library's default settings
+    const auto shape = btBuoyancyShape::create(mesh, o.settings);  // the library's default settings unless told
     const std::string method = std::string(btBuoyancyMethodName(shape->getMethod())) +
                                (shape->getMethod() == btBuoyancyMethod::ExactMesh ? "" : "-" + std::to_string(shape->getTextureSize()));
     Eigen::Vector3d lo = mesh.vertices.front(), hi = lo;
@@ -108,7 +111,7 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
                 t.setOrigin(btVector3(btScalar(spacing * (i % side)), 0, btScalar(spacing * (i / side))));
                 bodies.push_back(std::make_unique<btBuoyantBody>(shape, bs, t));
                 world.addRigidBody(bodies.back()->getRigidBody());
-                actions.push_back(std::make_unique<btBuoyancyAction>(*bodies.back(), &buoyancy));
+                actions.push_back(std::make_unique<btBuoyancyAction>(*bodies.back(), &buoyancy, o.settings));
                 batch.actions.push_back(actions.back().get());
             }
             world.addAction(&batch);
@@ -133,6 +136,7 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
             r.model = model;
             r.triangles = mesh.triangleCount();
             r.method = method;
+            r.variant = o.variant;
             r.bodies = n;
             r.threads = threads;
             r.substeps = frames * perFrame;
@@ -144,7 +148,7 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
             r.nsPerBodySubstepBuoyancy = 1e9 * batch.seconds / (double(n) * double(r.substeps));
             r.contacts = contacts;
             rows.push_back(r);
-            log << "  scaling " << model << " x" << n << ", " << threads << " thread(s): " << r.nsPerBodySubstepTotal
+            log << "  scaling " << model << (o.variant.empty() ? "" : " [" + o.variant + "]") << " x" << n << ", " << threads << " thread(s): " << r.nsPerBodySubstepTotal
                 << " ns/body-substep total, " << r.nsPerBodySubstepBuoyancy << " buoyancy; real-time factor "
                 << r.realtimeFactor << '\n';
         }
@@ -196,12 +200,12 @@ std::string scalingBreakdownMarkdown(const TriangleMesh& mesh, std::ostream& log
 void writeScalingCsv(const std::string& path, const std::vector<ScalingRow>& rows) {
     std::FILE* f = std::fopen(path.c_str(), "w");
     if (!f) throw std::runtime_error("cannot write " + path);
-    std::fprintf(f, "model,triangles,method,bodies,threads,substeps,sim_seconds,wall_seconds,buoyancy_seconds,"
+    std::fprintf(f, "model,triangles,method,variant,bodies,threads,substeps,sim_seconds,wall_seconds,buoyancy_seconds,"
                     "realtime_factor,ns_per_body_substep_total,ns_per_body_substep_buoyancy,ns_per_body_substep_bullet,"
                     "contact_manifolds\n");
     for (const ScalingRow& r : rows)
-        std::fprintf(f, "%s,%zu,%s,%d,%d,%ld,%.4f,%.4f,%.4f,%.4g,%.1f,%.1f,%.1f,%ld\n", r.model.c_str(), r.triangles,
-                     r.method.c_str(), r.bodies, r.threads, r.substeps, r.simSeconds, r.wallSeconds, r.buoyancySeconds,
+        std::fprintf(f, "%s,%zu,%s,%s,%d,%d,%ld,%.4f,%.4f,%.4f,%.4g,%.1f,%.1f,%.1f,%ld\n", r.model.c_str(), r.triangles,
+                     r.method.c_str(), r.variant.c_str(), r.bodies, r.threads, r.substeps, r.simSeconds, r.wallSeconds, r.buoyancySeconds,
                      r.realtimeFactor, r.nsPerBodySubstepTotal, r.nsPerBodySubstepBuoyancy,
                      r.nsPerBodySubstepTotal - r.nsPerBodySubstepBuoyancy, r.contacts);
     if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + path);

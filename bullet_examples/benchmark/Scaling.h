@@ -5,7 +5,9 @@
 /// by one Bullet action that runs the per-body btBuoyancyActions across OpenMP threads (the library is not
 /// threaded; Debian's Bullet has no task scheduler, so Bullet's own step stays on one thread).
 
+#include "bullet/btBuoyancySettings.h"
 #include "mesh/TriangleMesh.h"
+#include "water/btGerstnerWaterSurface.h"
 
 #include <iosfwd>
 #include <string>
@@ -23,6 +25,8 @@ struct ScalingOptions {
     double maxBodySubsteps = 8000;
     int minSubsteps = 4;                       ///< at least this many substeps per run
     int substepsPerSecond = 240;               ///< fixed substep rate
+    btBuoyancySettings settings;               ///< buoyancy settings of every body (default: the library's)
+    std::string variant;                       ///< label of `settings` in the CSV (empty: the defaults)
 };
 
 /// One row of scaling.csv.
@@ -30,6 +34,7 @@ struct ScalingRow {
     std::string model;            ///< model id
     std::size_t triangles = 0;    ///< triangles of the model
     std::string method;           ///< the resolved default method (and N)
+    std::string variant;          ///< ScalingOptions::variant (empty: default settings)
     int bodies = 0;               ///< body count
     int threads = 0;              ///< OpenMP threads for buoyancy
     long substeps = 0;            ///< substeps timed
@@ -41,6 +46,9 @@ struct ScalingRow {
     double nsPerBodySubstepBuoyancy = 0; ///< buoyancy wall / (bodies × substeps), ns
     long contacts = 0;            ///< contact manifolds with points, summed over substeps
 };
+
+/// The sea of issue 9's P3: four Gerstner waves, amplitudes 1, 0.6, 0.35, 0.2 m, wavelengths 60, 35, 20, 10 m.
+std::vector<btGerstnerWave> p3Sea();
 
 /// True when the benchmark was built with OpenMP (threads > 1 possible).
 bool scalingHasOpenMP();

@@ -1,6 +1,7 @@
 #include "benchmark/SpeedVsError.h"
 
 #include "benchmark/ComparisonMethods.h"
+#include "benchmark/SubTexel.h"
 #include "oracles/PolyhedralOracle.h"
 
 #include "bullet/btBuoyancyAction.h"
@@ -124,8 +125,13 @@ std::vector<SpeedErrorRow> runSpeedVsError(const std::vector<BenchShape>& shapes
             const int texture = mesh ? 0 : shape->getTextureSize();
             const std::size_t samples = mesh ? s.mesh.triangleCount() : shape->getSamples().size();
             std::string variant;
-            if (label == "default")
-                variant = std::string(btBuoyancyMethodName(shape->getMethod())) + (mesh ? "" : "-" + std::to_string(texture));
+            const std::string resolved = std::string(btBuoyancyMethodName(shape->getMethod())) + (mesh ? "" : "-" + std::to_string(texture));
+            if (label == "default") variant = resolved;
+            if (label == "lod") {  // automatic level of detail: the budget and what it picked
+                char b[32];
+                std::snprintf(b, sizeof b, "budget-%g%%:", settings.errorBudget);
+                variant = b + resolved;
+            }
             SampleWorkspace ws;
             const std::size_t first = rows.size();
             for (const PoseReference& pr : sr.poses) {
@@ -152,6 +158,44 @@ std::vector<SpeedErrorRow> runSpeedVsError(const std::vector<BenchShape>& shapes
             btBuoyancySettings st;
             st.method = btBuoyancyMethod::ExactMesh;
             library("exact-mesh", st);
+        }
+        // Automatic level of detail (btBuoyancySettings::errorBudget): what each budget picks, measured.
+        for (double budget : o.budgets) {
+            btBuoyancySettings st;
+            st.errorBudget = budget;
+            library("lod", st);
+        }
+        // Sub-texel waterline (DESIGN-NOTES 2.4; SubTexel.h): exact-coverage samples, wet part of straddling samples.
+        for (int n : o.textures) {
+            btBuoyancySettings st;
+            st.method = btBuoyancyMethod::ExactCoverage;
+            st.textureSize = n;
+            const auto t0 = std::chrono::steady_clock::now();
+            std::shared_ptr<const btBuoyancyShape> shape;
+            try {
+                shape = btBuoyancyShape::create(s.mesh, st);
+            } catch (const std::exception& e) {
+                log << "  " << s.name << " sub-texel " << n << ": skipped (" << e.what() << ")\n";
+                continue;
+            }
+            const double setup = secondsSince(t0);
+            SingleBodyRig rig(shape);
+            btBuoyancySettings dragOnly = st;
+            dragOnly.buoyancyEnabled = false;
+            btBuoyancyAction drag(rig.body(), &rig.buoyancyWorld(), dragOnly);
+            SubTexelAction action(rig.body().getRigidBody(), &shape->getSamples(), &rig.water(), rig.meshInCom(), &drag,
+                                  kRho, kG);
+            SampleWorkspace ws;
+            const std::size_t first = rows.size();
+            for (const PoseReference& pr : sr.poses) {
+                const HydrostaticsResult h = subTexelHydrostatics(shape->getSamples(), pr.pose.pose, water, 0.0, kRho, kG, pr.ref, ws);
+                SpeedErrorRow row = base("sub-texel", shape->getTextureSize(), "", shape->getSamples().size());
+                row.pose = pr.pose.id;
+                fillErrors(row, sr, pr, h.submerged_volume, h.centre_of_buoyancy, h.torque);
+                row.ns_per_body_substep = rig.nsPerSubstep(action, pr.pose.pose, o.timing);
+                rows.push_back(row);
+            }
+            logConfig(log, rows, first, setup);
         }
 
         // Comparison methods (not in the library), timed on the body of an exact-mesh shape (no bake).

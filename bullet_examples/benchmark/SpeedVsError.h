@@ -17,9 +17,9 @@ namespace buoyancy::bench {
 struct SpeedErrorRow {
     std::string shape;          ///< shape id
     std::size_t triangles = 0;  ///< triangles of the mesh
-    std::string method;         ///< default, texel-centre, exact-coverage, exact-mesh, probes, downward-faces
+    std::string method;         ///< default, texel-centre, exact-coverage, exact-mesh, sub-texel, lod, probes, downward-faces
     int texture = 0;            ///< N of N×N (0 for mesh and probe methods; the resolved N for default)
-    std::string variant;        ///< default: what it resolved to; probes: hull-N / grid-N; else empty
+    std::string variant;        ///< default: what it resolved to; lod: budget-X%:resolved; probes: hull-N / grid-N; else empty
     std::size_t samples = 0;    ///< elements summed per substep: samples, probes or triangles
     std::string pose;           ///< pose id (BenchPose::id)
     double volume_error_pct = 0; ///< |V − V_exact| / V_body, %
@@ -35,6 +35,7 @@ struct SpeedErrorOptions {
     std::vector<double> heels{0, 20, 45};                      ///< heel angles, degrees
     std::vector<int> hullProbes{32, 128};                      ///< hull probe counts
     std::vector<int> gridProbes{64, 512};                      ///< grid probe counts
+    std::vector<double> budgets{1.0, 0.1, 0.01};               ///< error budgets (%) for the `lod` rows
     TimingOptions timing;                                      ///< timer settings
 };
 

@@ -26,6 +26,11 @@ std::string label(const ConfigStats& c) {
 /// The concrete configuration the default resolved to ("exact-mesh" or "exact-coverage-512").
 bool isDefaultsOwn(const ConfigStats& c, const ConfigStats& def) {
     if (c.method == "default") return true;
+    // An automatic-LOD row that picked the default's own configuration ("budget-1%:exact-mesh").
+    if (c.method == "lod") {
+        const std::size_t colon = c.variant.find(':');
+        return colon != std::string::npos && c.variant.substr(colon + 1) == def.variant;
+    }
     const std::string own = c.method + (c.texture > 0 ? "-" + std::to_string(c.texture) : "");
     return own == def.variant;
 }
@@ -138,7 +143,7 @@ std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::v
     md << "\n## P3: 1,000 bodies in real time on 2 cores\n\n";
     const ScalingRow* p3 = nullptr;
     for (const auto& r : scaling)
-        if (r.bodies >= 1000 && r.threads == 2) p3 = &r;
+        if (r.bodies >= 1000 && r.threads == 2 && r.variant.empty()) p3 = &r;
     if (!p3) {
         md << "Not measured in this run (needs 1,000 bodies and 2 threads; `buoyancy bench` without --quick).\n";
     } else {
@@ -148,6 +153,17 @@ std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::v
            << " (" << fmt("%.0f", p3->nsPerBodySubstepTotal) << " ns per body-substep, of which buoyancy "
            << fmt("%.0f", p3->nsPerBodySubstepBuoyancy) << ") → " << (p3->realtimeFactor >= 1 ? "holds" : "FAILS")
            << "; needs " << fmt("%.1f", 1.0 / p3->realtimeFactor) << "× less work to hold.\n";
+    }
+    // Level of detail on/off in the same run (DESIGN-NOTES 2.5): the "no-lod" rows use dragClusters = 0 and
+    // waterPatchNodes = 0 (every fine drag sample, one exact wave query per vertex/sample), the previous default.
+    for (const auto& off : scaling) {
+        if (off.variant != "no-lod") continue;
+        for (const auto& on : scaling)
+            if (on.variant.empty() && on.bodies == off.bodies && on.threads == off.threads)
+                md << "- Level of detail, " << on.bodies << " bodies, " << on.threads << " thread(s): "
+                   << fmt("%.0f", off.nsPerBodySubstepBuoyancy) << " ns buoyancy per body-substep without (no-lod) → "
+                   << fmt("%.0f", on.nsPerBodySubstepBuoyancy) << " ns with the default level of detail ("
+                   << fmt("%.1f", off.nsPerBodySubstepBuoyancy / on.nsPerBodySubstepBuoyancy) << "× faster).\n";
     }
     return md.str();
 }

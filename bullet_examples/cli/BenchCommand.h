@@ -4,7 +4,8 @@
 ///   speed_vs_error.csv   every method × texture × shape × pose: errors against the exact clip and ns per
 ///                        body-substep (drag on, one thread),
 ///   fig9_sphere_volume.csv  the paper's Fig. 9 (sphere R = 0.5, volume against depth),
-///   scaling.csv          1…1000 bodies in Gerstner waves, 1 and 2 threads,
+///   scaling.csv          1…1000 bodies in Gerstner waves, 1 and 2 threads (and "no-lod" rows),
+///   waves_lod.csv, drag_lod.csv  the error the level of detail adds and the time it saves (part lod),
 ///   summary.md           the headline table and goals P1–P3 as measured (also printed).
 /// --quick runs a reduced set (3 shapes, 2 textures, 4 poses, ≤ 100 bodies) in well under 30 s; plots are
 /// made from the CSVs by scripts/bench_plots.py (scripts/bench.sh runs both).
@@ -19,7 +20,7 @@ namespace buoyancy::cli {
 struct BenchOptions {
     bool quick = false;            ///< the reduced, fast set (smoke test)
     std::string out = "bench-results"; ///< output folder (created when missing)
-    std::string parts = "speed,fig9,scaling"; ///< which parts to run, comma-separated
+    std::string parts = "speed,fig9,scaling,lod"; ///< which parts to run, comma-separated (also: opencl)
 };
 
 /// Register the `bench` subcommand on `app`.

@@ -39,6 +39,8 @@ void addHydrostaticsCommand(CLI::App& app, HydrostaticsOptions& o) {
     sub->add_option("--method", o.method,
                     "texel-centre | exact-coverage | exact-mesh | default (default: chosen per mesh)");
     sub->add_option("--texture", o.texture, "texture side N (N x N texels); ignored by exact-mesh");
+    sub->add_option("--error-budget", o.error_budget,
+                    "automatic level of detail: worst volume error allowed, % of the body's volume (issue 9)");
     sub->add_option("--import-timeout", o.import_timeout, "time limit of the mesh import, s (default 10)");
     sub->add_flag("--json", o.json, "print one JSON object instead of a table");
 }
@@ -95,6 +97,9 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     btBuoyancySettings settings;
     settings.method = btBuoyancyMethodFromName(o.method);  // "default" = Auto
     settings.textureSize = o.texture.value_or(0);
+    if (!std::isfinite(o.error_budget) || o.error_budget < 0)
+        throw UsageError("--error-budget: must be a number >= 0 (% of the body's volume)");
+    settings.errorBudget = o.error_budget;  // issue 9: automatic level of detail
     const bool meshHadUvs = mesh.hasUvs();
     const std::size_t triangles = mesh.triangleCount();
     std::shared_ptr<const btBuoyancyShape> shape;
@@ -159,7 +164,8 @@ int runHydrostatics(const HydrostaticsOptions& o) {
                      {"volume", dry.volume},
                      {"centre_of_volume", vec(dry.centre)},
                      {"inertia_unit_density", inertia}};
-        j["method"] = {{"name", btBuoyancyMethodName(method)}, {"texture", texture}, {"samples", sampleCount}};
+        j["method"] = {{"name", btBuoyancyMethodName(method)}, {"texture", texture}, {"samples", sampleCount},
+                       {"level_of_detail", btBuoyancyPickLevelOfDetail(settings, triangles).description}};
         j["submerged"] = {{"volume", isWet ? wet.submerged_volume : 0.0},
                           {"centre_of_buoyancy", isWet ? vec(wet.centre_of_buoyancy) : nlohmann::json(nullptr)},
                           {"force", vec(wet.force)},
@@ -185,6 +191,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
                 dry.inertia(1, 2), dry.inertia(2, 0), dry.inertia(2, 1), dry.inertia(2, 2));
     std::printf("method             %s", btBuoyancyMethodName(method));
     if (texture) std::printf(" (texture %dx%d, %zu samples)", texture, texture, sampleCount);
+    std::printf("\nlevel of detail    %s", btBuoyancyPickLevelOfDetail(settings, triangles).description.c_str());
     std::printf("\nwater              flat at y = %.9g m, density %.9g kg/m^3, g = %.9g m/s^2\n", o.water_height,
                 o.water_density, o.gravity);
     std::printf("submerged volume   %.9g m^3 (%.6g %% of the body)\n", isWet ? wet.submerged_volume : 0.0,

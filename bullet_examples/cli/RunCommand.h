@@ -3,14 +3,34 @@
 /// `buoyancy run SCENE.json --out DIR [--duration T]`: the headless scene runner shared by users and
 /// tests. Reads and validates the whole scene (SceneFile.h), builds a Bullet world with one
 /// btBuoyancyAction per body, steps it with stepSimulation(dt·n, n, dt) per frame and writes
-/// DIR/trajectory.csv (docs/scene-format.md).
+/// DIR/trajectory.csv (docs/scene-format.md). With `--png PNGDIR [--size W H]` it also renders a picture at
+/// t = 0 and at every output time through the offscreen renderer (bullet_examples/render, issue 8).
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace buoyancy::cli {
+
+struct Scene;
+struct SceneWorld;
+struct RunOptions;
+
+/// Receives the running world at t = 0 and at every output time (the `--png` pictures).
+class SceneFrameSink {
+public:
+    virtual ~SceneFrameSink() = default;
+    /// Called after the trajectory rows of time t (s) were written.
+    virtual void frame(const Scene& scene, const SceneWorld& world, double t) = 0;
+};
+
+/// Makes the `--png` sink; set by an executable built with the offscreen renderer (empty otherwise).
+/// @throws UsageError when the renderer cannot start (e.g. no EGL display)
+using SceneFrameSinkFactory = std::function<std::unique_ptr<SceneFrameSink>(const RunOptions&, const Scene&)>;
 
 /// Options of `buoyancy run`.
 struct RunOptions {
@@ -18,6 +38,9 @@ struct RunOptions {
     std::string out;                 ///< output folder (created when missing)
     std::optional<double> duration;  ///< overrides the scene's "duration", s (≥ 0)
     double import_timeout = 10.0;    ///< s, time limit of the child process that imports each mesh file
+    std::string png;                 ///< `--png DIR`: one PNG per output interval ("" = none; issue 8)
+    std::vector<int> size{960, 540}; ///< `--size W H`: picture size, pixels (with --png)
+    SceneFrameSinkFactory pngSink;   ///< the offscreen renderer (unset: this build has none, --png is refused)
 };
 
 /// Register the `run` subcommand on `app`, writing parsed values into `options`.

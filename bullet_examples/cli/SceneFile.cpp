@@ -67,7 +67,7 @@ SceneShape readShape(const Reader& r, const json& j, const std::string& key, con
 btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::string& key) {
     r.requireObject(j, key);
     r.allowKeys(j, key, {"method", "texture", "drag_coefficient", "skin_friction", "linear_damping", "added_mass",
-                         "added_mass_coefficient"});
+                         "added_mass_coefficient", "error_budget", "drag_clusters", "water_patch_nodes"});
     btBuoyancySettings b;
     if (j.contains("method")) {
         const std::string m = r.string(j["method"], key + ".method");
@@ -78,6 +78,14 @@ btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::strin
         }
     }
     if (j.contains("texture")) b.textureSize = r.integer(j["texture"], key + ".texture", 1, 16384);
+    // Issue 9: automatic level of detail and the level-of-detail knobs (btBuoyancySettings).
+    if (j.contains("error_budget")) b.errorBudget = r.number(j["error_budget"], key + ".error_budget", 0, 100);
+    if (j.contains("drag_clusters")) b.dragClusters = r.integer(j["drag_clusters"], key + ".drag_clusters", 0, 1000000);
+    if (j.contains("water_patch_nodes")) {
+        b.waterPatchNodes = r.integer(j["water_patch_nodes"], key + ".water_patch_nodes", 0, 64);
+        if (b.waterPatchNodes != 0 && b.waterPatchNodes < 5)
+            r.fail(key + ".water_patch_nodes", "must be 0 (exact wave queries) or in 5..64");
+    }
     if (j.contains("drag_coefficient")) b.dragCoefficient = r.number(j["drag_coefficient"], key + ".drag_coefficient", 0, 100);
     if (j.contains("skin_friction")) b.skinFriction = r.number(j["skin_friction"], key + ".skin_friction", 0, 100);
     if (j.contains("linear_damping")) b.linearDamping = r.number(j["linear_damping"], key + ".linear_damping", 0, 100);
@@ -92,7 +100,7 @@ SceneBody readBody(const Reader& r, const json& j, const std::string& key, std::
     r.requireObject(j, key);
     r.allowKeys(j, key, {"name", "shape", "density", "mass", "mass_model", "thickness", "position", "rotation",
                          "linear_velocity", "angular_velocity", "buoyancy", "ballast", "fixed", "collision",
-                         "water_graph", "permeability"});
+                         "water_graph", "permeability", "density_map"});
     SceneBody b;
     b.name = j.contains("name") ? r.string(j["name"], key + ".name") : "body" + std::to_string(index);
     if (b.name.empty()) r.fail(key + ".name", "must not be empty");
@@ -161,6 +169,13 @@ SceneBody readBody(const Reader& r, const json& j, const std::string& key, std::
     }
     b.flooding = readSceneFlooding(j, key, directory, [&](const std::string& k, const std::string& w) { r.fail(k, w); });
     if (b.flooding.enabled && b.body.fixed) r.fail(key + ".water_graph", "a fixed body cannot hold water");
+    if (b.flooding.densityMap.enabled) {  // issue 6, paper Fig. 15 (SceneGraph.h: SceneDensityMap)
+        if (b.body.fixed) r.fail(key + ".density_map", "a fixed body has no mass to distribute");
+        if (!hasMass) r.fail(key + ".density_map", "needs \"mass\" (the total dry mass the map distributes), not \"density\"");
+        if (j.contains("mass_model")) r.fail(key + ".density_map", "give either \"mass_model\" or \"density_map\"");
+        b.body.massModel = btBuoyantMassModel::DensityMap;
+        b.body.arealDensity = [](const Eigen::Vector3d&) { return 1.0; };  // replaced by the map when the body is built
+    }
     return b;
 }
 
@@ -318,7 +333,7 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
     }
     r.requireObject(j, "");
     r.allowKeys(j, "", {"gravity", "dt", "substeps_per_frame", "duration", "output_interval", "water", "bodies",
-                        "ground"});
+                        "ground", "camera"});
     Scene s;
     s.directory = directory;
     if (j.contains("gravity")) {
@@ -334,8 +349,24 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
     if (j.contains("ground")) {
         const json& g = j["ground"];
         r.requireObject(g, "ground");
-        r.allowKeys(g, "ground", {"height"});
+        r.allowKeys(g, "ground", {"height", "normal"});
         s.groundHeight = g.contains("height") ? r.number(g["height"], "ground.height", -kBig, kBig) : 0.0;
+        if (g.contains("normal")) {  // a sloped floor (a beach) through (0, height, 0); issue 8
+            s.groundNormal = r.vec3(g["normal"], "ground.normal", -kBig, kBig);
+            if (!(s.groundNormal.norm() > 1e-12)) r.fail("ground.normal", "zero vector");
+            s.groundNormal.normalize();
+            if (!(s.groundNormal.y() >= 0.1))
+                r.fail("ground.normal", "must point up (y component of the unit normal >= 0.1, slope <= 84 degrees)");
+        }
+    }
+    if (j.contains("camera")) {  // the view of the pictures and the browser (issue 8)
+        const json& c = j["camera"];
+        r.requireObject(c, "camera");
+        r.allowKeys(c, "camera", {"target", "distance", "yaw", "pitch"});
+        if (c.contains("target")) s.camera.target = r.vec3(c["target"], "camera.target", -kBig, kBig);
+        if (c.contains("distance")) s.camera.distance = r.number(c["distance"], "camera.distance", 0.1, 1e4);
+        if (c.contains("yaw")) s.camera.yaw = r.number(c["yaw"], "camera.yaw", -360.0, 360.0);
+        if (c.contains("pitch")) s.camera.pitch = r.number(c["pitch"], "camera.pitch", -89.0, 89.0);
     }
     if (!j.contains("bodies")) r.fail("bodies", "missing");
     if (!j["bodies"].is_array()) r.fail("bodies", "expected an array");

@@ -62,6 +62,15 @@ struct SceneWater {
     double damping = 0.1;                          ///< interactive: γ, 1/s
 };
 
+/// The "camera" block: the view of `buoyancy run --png` and of the scene browser (issue 8). Fields left out are
+/// chosen to frame the bodies at t = 0.
+struct SceneCamera {
+    std::optional<Eigen::Vector3d> target; ///< point looked at, world, m
+    std::optional<double> distance;        ///< eye–target distance, m
+    std::optional<double> yaw;             ///< eye rotation about +y, degrees (0: eye on +z)
+    std::optional<double> pitch;           ///< eye elevation above the target, degrees
+};
+
 /// A whole scene.
 struct Scene {
     Eigen::Vector3d gravity = Eigen::Vector3d(0, -9.81, 0); ///< m/s², must point down y
@@ -73,7 +82,11 @@ struct Scene {
     double waterDensity = 1000.0;     ///< kg/m³
     SceneWater water;                 ///< surface type and parameters
     std::optional<double> groundHeight; ///< static floor y = h
+    /// Unit normal of the floor (world); the floor is the plane through (0, h, 0) with this normal (a sloped
+    /// beach when not +y). Key "ground.normal", default [0, 1, 0].
+    Eigen::Vector3d groundNormal = Eigen::Vector3d::UnitY();
     std::vector<SceneBody> bodies;
+    SceneCamera camera;               ///< "camera": the pictures' and the browser's view (issue 8)
     std::string directory;            ///< folder of the scene file (mesh paths are relative to it)
 };
 

@@ -3,6 +3,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -22,7 +25,7 @@ constexpr double kBig = 1e6;
 void readGraph(const R& r, const json& g, const std::string& key, SceneFlooding& out) {
     r.requireObject(g, key);
     r.allowKeys(g, key, {"nodes", "edges", "seed", "auto", "ingress", "discharge_coefficient", "viscosity", "flow",
-                    "diffusivity"});
+                    "diffusivity", "water_inertia"});
     WaterGraph& graph = out.graph;
     if (g.contains("seed")) graph.seed = std::uint64_t(r.integer(g["seed"], key + ".seed", 0, 2147483647));
     if (g.contains("ingress")) {
@@ -36,6 +39,12 @@ void readGraph(const R& r, const json& g, const std::string& key, SceneFlooding&
         if (v == "poiseuille") graph.flow = WaterFlowModel::Poiseuille;
         else if (v == "diffusion") graph.flow = WaterFlowModel::Diffusion;
         else r.fail(key + ".flow", "unknown value \"" + v + "\" (poiseuille or diffusion)");
+    }
+    if (g.contains("water_inertia")) {
+        const std::string v = r.string(g["water_inertia"], key + ".water_inertia");
+        if (v == "shape") graph.inertia = WaterInertiaModel::Shape;
+        else if (v == "points") graph.inertia = WaterInertiaModel::PointMass;
+        else r.fail(key + ".water_inertia", "unknown value \"" + v + "\" (shape or points)");
     }
     if (g.contains("discharge_coefficient"))
         graph.dischargeCoefficient = r.number(g["discharge_coefficient"], key + ".discharge_coefficient", 0, 1, true);
@@ -112,7 +121,75 @@ void readGraph(const R& r, const json& g, const std::string& key, SceneFlooding&
     }
 }
 
+SceneDensityMap readDensityMap(const R& r, const json& j, const std::string& key) {
+    r.requireObject(j, key);
+    r.allowKeys(j, key, {"base", "spots", "rotation", "update_interval"});
+    SceneDensityMap m;
+    m.enabled = true;
+    if (j.contains("base")) m.base = r.number(j["base"], key + ".base", 0, kBig);
+    if (j.contains("spots")) {
+        if (!j["spots"].is_array()) r.fail(key + ".spots", "expected an array of {\"direction\", \"angle\", \"value\"}");
+        for (std::size_t i = 0; i < j["spots"].size(); ++i) {
+            const json& sj = j["spots"][i];
+            const std::string sk = key + ".spots[" + std::to_string(i) + "]";
+            r.requireObject(sj, sk);
+            r.allowKeys(sj, sk, {"direction", "angle", "value"});
+            SceneDensitySpot spot;
+            if (!sj.contains("direction")) r.fail(sk + ".direction", "missing");
+            spot.direction = r.vec3(sj["direction"], sk + ".direction", -kBig, kBig);
+            if (!(spot.direction.norm() > 1e-12)) r.fail(sk + ".direction", "zero direction");
+            spot.direction.normalize();
+            if (sj.contains("angle")) spot.angleDegrees = r.number(sj["angle"], sk + ".angle", 0, 180, true);
+            if (!sj.contains("value")) r.fail(sk + ".value", "missing (relative areal density, >= 0)");
+            spot.value = r.number(sj["value"], sk + ".value", 0, kBig);
+            m.spots.push_back(spot);
+        }
+    }
+    if (j.contains("rotation")) {
+        const json& rj = j["rotation"];
+        const std::string rk = key + ".rotation";
+        r.requireObject(rj, rk);
+        r.allowKeys(rj, rk, {"axis", "degrees_per_second"});
+        if (rj.contains("axis")) m.rotationAxis = r.vec3(rj["axis"], rk + ".axis", -kBig, kBig);
+        if (!(m.rotationAxis.norm() > 1e-12)) r.fail(rk + ".axis", "zero axis");
+        m.rotationAxis.normalize();
+        if (rj.contains("degrees_per_second"))
+            m.degreesPerSecond = r.number(rj["degrees_per_second"], rk + ".degrees_per_second", -1e6, 1e6);
+    }
+    if (j.contains("update_interval"))
+        m.updateInterval = r.number(j["update_interval"], key + ".update_interval", 0, 1e6, true);
+    bool positive = m.base > 0;
+    for (const SceneDensitySpot& s : m.spots) positive = positive || s.value > 0;
+    if (!positive) r.fail(key, "the map is zero everywhere (give \"base\" > 0 or a spot with \"value\" > 0)");
+    return m;
+}
+
 }  // namespace
+
+std::int64_t SceneDensityMap::version(double t) const {
+    if (degreesPerSecond == 0) return 0;
+    const double k = std::floor(t / updateInterval + 1e-9);
+    return std::isfinite(k) ? std::int64_t(std::clamp(k, -9e15, 9e15)) : 0;
+}
+
+double SceneDensityMap::density(double t, const Eigen::Vector3d& p, const Eigen::Vector3d& centre) const {
+    const Eigen::Vector3d d = p - centre;
+    const double n = d.norm();
+    if (!(n > 0) || spots.empty()) return base;
+    // The map of step k = version(t) is the one at time k·interval (piecewise constant in time).
+    const double angle = double(version(t)) * updateInterval * degreesPerSecond * 3.14159265358979323846 / 180.0;
+    const Eigen::AngleAxisd rot(angle, rotationAxis);
+    double sigma = base;
+    bool inSpot = false;
+    for (const SceneDensitySpot& s : spots) {
+        const double c = std::clamp(d.dot(rot * s.direction) / n, -1.0, 1.0);
+        if (std::acos(c) <= s.angleDegrees * 3.14159265358979323846 / 180.0) {
+            sigma = inSpot ? std::max(sigma, s.value) : s.value;
+            inSpot = true;
+        }
+    }
+    return sigma;
+}
 
 SceneFlooding readSceneFlooding(const json& body, const std::string& key, const std::string& directory,
                                 const SceneFailFn& fail) {
@@ -143,12 +220,32 @@ SceneFlooding readSceneFlooding(const json& body, const std::string& key, const 
         if (!out.enabled) fail(pk, "needs a \"water_graph\" (where would the water go?)");
         const json& p = body["permeability"];
         r.requireObject(p, pk);
-        r.allowKeys(p, pk, {"regions", "texture"});
-        if (p.contains("texture"))
-            fail(pk + ".texture", "permeability textures are not supported in this build (no image loader); use \"regions\"");
-        if (!p.contains("regions")) fail(pk + ".regions", "missing (an array of {\"centre\", \"radius\", \"value\"})");
-        if (!p["regions"].is_array()) fail(pk + ".regions", "expected an array");
-        for (std::size_t i = 0; i < p["regions"].size(); ++i) {
+        r.allowKeys(p, pk, {"regions", "texture", "filter"});
+        if (p.contains("texture")) {
+            const std::string tk = pk + ".texture";
+            const std::string name = r.string(p["texture"], tk);
+            if (name.empty()) fail(tk, "must not be empty (an image file, relative to the scene file)");
+            std::filesystem::path path(name);
+            if (path.is_relative()) path = std::filesystem::path(directory) / path;
+            out.texturePath = path.string();
+            try {
+                out.texture = loadPermeabilityImage(out.texturePath);
+            } catch (const std::invalid_argument& e) {
+                fail(tk, e.what());
+            }
+            out.hasTexture = true;
+        }
+        if (p.contains("filter")) {
+            const std::string v = r.string(p["filter"], pk + ".filter");
+            if (v == "bilinear") out.textureFilter = TextureFilter::Bilinear;
+            else if (v == "nearest") out.textureFilter = TextureFilter::Nearest;
+            else fail(pk + ".filter", "unknown value \"" + v + "\" (bilinear or nearest)");
+            if (!out.hasTexture) fail(pk + ".filter", "only with \"texture\"");
+        }
+        if (!p.contains("regions") && !out.hasTexture)
+            fail(pk + ".regions", "missing (an array of {\"centre\", \"radius\", \"value\"}, or give \"texture\")");
+        if (p.contains("regions") && !p["regions"].is_array()) fail(pk + ".regions", "expected an array");
+        for (std::size_t i = 0; p.contains("regions") && i < p["regions"].size(); ++i) {
             const json& g = p["regions"][i];
             const std::string rk = pk + ".regions[" + std::to_string(i) + "]";
             r.requireObject(g, rk);
@@ -168,6 +265,7 @@ SceneFlooding readSceneFlooding(const json& body, const std::string& key, const 
             out.regionNodes.push_back(node);
         }
     }
+    if (body.contains("density_map")) out.densityMap = readDensityMap(r, body["density_map"], key + ".density_map");
     return out;
 }
 
@@ -183,7 +281,39 @@ WaterGraph buildSceneWaterGraph(const SceneFlooding& flooding, const TriangleMes
 }
 
 PermeableSamples buildScenePermeability(const SceneFlooding& flooding, const WaterGraph& graph,
+                                        const SurfaceSamples& samples, const TriangleMesh& mesh) {
+    if (!flooding.hasTexture) return buildScenePermeability(flooding, graph, samples);
+    // Texture (in the model's UVs, or the generated atlas at the image's larger side), then the regions on
+    // top (overlaps take the largest value).
+    PermeabilityMap map(samples, graph);
+    const int atlasSize = std::max(flooding.texture.width, flooding.texture.height);
+    PermeabilityUvs uvs;
+    try {
+        uvs = permeabilityUvs(mesh, atlasSize);
+    } catch (const std::exception& e) {
+        throw std::invalid_argument("permeability.texture: the model has no UVs and no atlas fits at " +
+                                    std::to_string(atlasSize) + " texels (" + e.what() + ")");
+    }
+    map.paintImage(flooding.texture, surfaceSampleUvs(samples, mesh, uvs.corner_uvs), PermeabilityPaint::Set,
+                   flooding.textureFilter);
+    for (std::size_t i = 0; i < flooding.regions.size(); ++i) {
+        const std::string& name = i < flooding.regionNodes.size() ? flooding.regionNodes[i] : std::string();
+        int node = -1;
+        if (!name.empty()) {
+            node = graph.findNode(name);
+            if (node < 0)
+                throw std::invalid_argument("permeability.regions[" + std::to_string(i) + "].node: no node named \"" + name + "\"");
+        }
+        const PermeabilityRegion& g = flooding.regions[i];
+        map.paintSphere(g.centre, g.radius, g.value, PermeabilityPaint::Max, node);
+    }
+    return map.permeableSamples();
+}
+
+PermeableSamples buildScenePermeability(const SceneFlooding& flooding, const WaterGraph& graph,
                                         const SurfaceSamples& samples) {
+    if (flooding.hasTexture)
+        throw std::invalid_argument("permeability.texture: needs the mesh (use the overload taking the mesh)");
     std::vector<PermeabilityRegion> regions = flooding.regions;
     for (std::size_t i = 0; i < regions.size(); ++i) {
         const std::string& name = i < flooding.regionNodes.size() ? flooding.regionNodes[i] : std::string();

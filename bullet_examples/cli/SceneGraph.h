@@ -5,18 +5,47 @@
 
 #include "cli/SceneJsonReader.h"  // SceneFailFn
 #include "graph/AutoWaterGraph.h"
+#include "graph/PermeabilityMap.h"
+#include "graph/PermeabilityTexture.h"
 #include "graph/WaterGraph.h"
 #include "graph/WaterIngress.h"
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <Eigen/Core>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
 namespace buoyancy::cli {
 
-/// One body's water graph and permeability as read from the scene.
+/// One heavier (or lighter) cap of a scene density map.
+struct SceneDensitySpot {
+    Eigen::Vector3d direction = -Eigen::Vector3d::UnitY(); ///< from the shape's bounds centre, body frame (unit)
+    double angleDegrees = 45;                               ///< half-angle of the cap, degrees, (0, 180]
+    double value = 1;                                       ///< relative areal density inside, >= 0
+};
+
+/// "density_map": a time-varying dry mass distribution over the surface (paper Fig. 15). Relative areal
+/// density σ = `base`, or a spot's `value` inside its cap (the largest of overlapping spots); the spots turn
+/// about `rotationAxis` at `degreesPerSecond`, in steps of `updateInterval` (the mass properties are
+/// recomputed only at those steps). The body's "mass" is the total it is rescaled to.
+struct SceneDensityMap {
+    bool enabled = false;                                  ///< the body has a "density_map"
+    double base = 1;                                       ///< relative areal density outside the spots, >= 0
+    std::vector<SceneDensitySpot> spots;                   ///< "spots"
+    Eigen::Vector3d rotationAxis = Eigen::Vector3d::UnitZ(); ///< "rotation.axis", body frame (unit)
+    double degreesPerSecond = 0;                           ///< "rotation.degrees_per_second"
+    double updateInterval = 0.1;                           ///< "update_interval", s, > 0
+    /// Map version at time t: floor(t / updateInterval) while rotating, 0 for a fixed map.
+    std::int64_t version(double t) const;
+    /// Relative areal density at body-frame surface point p for the map of time t (`centre`: the shape's
+    /// bounds centre).
+    double density(double t, const Eigen::Vector3d& p, const Eigen::Vector3d& centre) const;
+};
+
+/// One body's water graph, permeability and density map as read from the scene.
 struct SceneFlooding {
     bool enabled = false;           ///< the body has a "water_graph"
     bool automatic = false;         ///< "water_graph": {"auto": {...}}: built from the mesh at run time
@@ -24,9 +53,15 @@ struct SceneFlooding {
     AutoWaterGraphSettings autoSettings; ///< automatic graph settings
     std::vector<PermeabilityRegion> regions;  ///< "permeability": {"regions": [...]}; node resolved below
     std::vector<std::string> regionNodes;     ///< #regions node name each region feeds ("" = nearest node)
+    bool hasTexture = false;                  ///< "permeability": {"texture": ...}
+    std::string texturePath;                  ///< resolved against the scene's folder
+    PermeabilityImage texture;                ///< loaded while reading the scene (errors name the key and file)
+    TextureFilter textureFilter = TextureFilter::Bilinear; ///< "filter": "bilinear" (default) or "nearest"
+    SceneDensityMap densityMap;               ///< "density_map" (paper Fig. 15; no graph needed)
 };
 
-/// Read the "water_graph" and "permeability" keys of body object `body` (key = "bodies[i]").
+/// Read the "water_graph", "permeability" and "density_map" keys of body object `body` (key = "bodies[i]").
+/// A permeability texture is loaded here, so a missing or bad image fails before anything runs.
 /// "water_graph" may be an object or the path of a JSON file with the same schema (relative to `directory`).
 SceneFlooding readSceneFlooding(const nlohmann::json& body, const std::string& key, const std::string& directory,
                                 const SceneFailFn& fail);
@@ -36,8 +71,15 @@ SceneFlooding readSceneFlooding(const nlohmann::json& body, const std::string& k
 WaterGraph buildSceneWaterGraph(const SceneFlooding& flooding, const TriangleMesh& mesh);
 
 /// The permeable samples of the body from its regions (node names resolved in `graph`).
-/// @throws std::invalid_argument naming a region whose node does not exist
+/// @throws std::invalid_argument naming a region whose node does not exist, or when a texture was given
+/// (that needs the mesh: use the overload below)
 PermeableSamples buildScenePermeability(const SceneFlooding& flooding, const WaterGraph& graph,
                                         const SurfaceSamples& samples);
+
+/// The permeable samples from the texture (looked up at each sample's UV in the model's UVs, or in the
+/// generated atlas at the image's larger side when the model has none; see PermeabilityTexture.h) and the
+/// regions (largest value wins). Without a texture, as the overload above.
+PermeableSamples buildScenePermeability(const SceneFlooding& flooding, const WaterGraph& graph,
+                                        const SurfaceSamples& samples, const TriangleMesh& mesh);
 
 }  // namespace buoyancy::cli

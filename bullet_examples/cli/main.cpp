@@ -9,6 +9,10 @@
 #include "cli/HydrostaticsCommand.h"
 #include "cli/RunCommand.h"
 
+#ifdef BUOYANCY_HAVE_RENDER
+#include "render/PngRecorder.h"  // `run --png` (issue 8); absent when OpenGL/EGL/stb were not found
+#endif
+
 #include <CLI/CLI.hpp>
 
 #include <exception>
@@ -24,6 +28,9 @@ int main(int argc, char** argv) {
     addHydrostaticsCommand(app, hydro);
     RunOptions run;
     addRunCommand(app, run);
+#ifdef BUOYANCY_HAVE_RENDER
+    run.pngSink = buoyancy::render::makePngSink;
+#endif
     BenchOptions bench;
     addBenchCommand(app, bench);
 

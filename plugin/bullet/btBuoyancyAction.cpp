@@ -1,20 +1,54 @@
 #include "bullet/btBuoyancyAction.h"
 
 #include "bullet/btBulletConvert.h"
+#include "bake/btBuoyancyDeformable.h"
 #include "bullet/btBuoyancyInvariants.h"
 #include "bullet/btBuoyancyWorld.h"
 #include "bullet/btBuoyantBodyBuilder.h"
+#include "integrals/SampleFormulas.h"
+#include "opencl/btBuoyancyDeviceBackend.h"
+#include "water/btGerstnerWaterSurface.h"
 #include "water/btWaterSurface.h"
 
 #include <BulletCollision/CollisionDispatch/btCollisionWorld.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 #include <LinearMath/btIDebugDraw.h>
 
+#include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
+#include <utility>
 
 using buoyancy::toBullet;
 using buoyancy::toEigen;
+
+namespace {
+
+/// Drag clusters shared by every action of one shape at one dragClusters setting (built once: clustering a
+/// 16k-sample shape takes milliseconds, too slow to repeat for 1,000 bodies). Entries of dead shapes are dropped.
+std::shared_ptr<const buoyancy::DragClusters> sharedDragClusters(const std::shared_ptr<const btBuoyancyShape>& shape,
+                                                                 int maxClusters, int maxProbes) {
+    struct Entry {
+        std::weak_ptr<const btBuoyancyShape> shape;
+        int maxClusters, maxProbes;
+        std::shared_ptr<const buoyancy::DragClusters> clusters;
+    };
+    static std::mutex mutex;
+    static std::vector<Entry> entries;
+    std::lock_guard<std::mutex> lock(mutex);
+    entries.erase(std::remove_if(entries.begin(), entries.end(), [](const Entry& e) { return e.shape.expired(); }),
+                  entries.end());
+    for (const Entry& e : entries)
+        if (e.maxClusters == maxClusters && e.maxProbes == maxProbes && e.shape.lock() == shape) return e.clusters;
+    buoyancy::DragClusters c = buoyancy::clusterDragSamples(shape->getDragSamples(), std::size_t(maxClusters));
+    buoyancy::assignVelocityProbes(c, std::size_t(maxProbes));
+    auto clusters = std::make_shared<const buoyancy::DragClusters>(std::move(c));
+    entries.push_back(Entry{shape, maxClusters, maxProbes, clusters});
+    return clusters;
+}
+
+}  // namespace
 
 btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBuoyancyShape> shape,
                                    btBuoyancyWorld* world, const btBuoyancySettings& settings,
@@ -24,14 +58,8 @@ btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBu
     if (!m_shape) throw std::invalid_argument("shape: null");
     if (!m_world) throw std::invalid_argument("world: null");
     m_settings.validate();
-    const std::size_t n = m_shape->getDragSamples().size();
-    m_ws.resize(n);
-    m_ux.resize(n);
-    m_uy.resize(n);
-    m_uz.resize(n);
-    m_dragHalfSize.resize(n);
-    const buoyancy::SurfaceSamples& drag = m_shape->getDragSamples();
-    for (std::size_t i = 0; i < n; ++i) m_dragHalfSize[i] = 0.5 * std::sqrt(std::max(drag.area[i], 0.0));
+    m_ws.resize(m_shape->getSamples().size());
+    selectDragClusters();
     m_baseLinearSleep = double(m_body->getLinearSleepingThreshold());
     m_baseAngularSleep = double(m_body->getAngularSleepingThreshold());
     m_world->registerAction(this);
@@ -46,64 +74,150 @@ btBuoyancyAction::~btBuoyancyAction() { m_world->unregisterAction(this); }
 
 void btBuoyancyAction::setSettings(const btBuoyancySettings& settings) {
     settings.validate();
+    const bool recluster = settings.dragClusters != m_settings.dragClusters ||
+                           settings.waterVelocityProbes != m_settings.waterVelocityProbes;
     m_settings = settings;
+    if (recluster) selectDragClusters();
+}
+
+void btBuoyancyAction::selectDragClusters() {
+    m_drag = sharedDragClusters(m_shape, m_settings.dragClusters, m_settings.waterVelocityProbes);
+    const std::size_t k = m_drag->size();
+    for (auto* v : {&m_dx, &m_dy, &m_dz, &m_dax, &m_day, &m_daz, &m_dhalf, &m_dh, &m_ux, &m_uy, &m_uz}) v->assign(k, 0.0);
+    const std::size_t p = m_drag->probeX.size();
+    for (auto* v : {&m_px, &m_py, &m_pz, &m_pux, &m_puy, &m_puz}) v->assign(p, 0.0);
+    m_dragCache.reset();
+}
+
+buoyancy::HydrostaticsResult btBuoyancyAction::submergedClosedForm(const Eigen::Isometry3d& pose, double rho, double g,
+                                                                   const Eigen::Vector3d& com) const {
+    // DESIGN-NOTES 2.5: the whole body under flat water: V_sub = V, C_B = the centre of volume, F = ρ g V ŷ
+    // through C_B (Archimedes; the pressure integral of a closed surface in a linear pressure field).
+    const buoyancy::MassProperties& dry = m_shape->getUnitSolid();
+    buoyancy::HydrostaticsResult h;
+    h.submerged_volume = dry.volume;
+    h.centre_of_buoyancy = pose * dry.centre;
+    h.force = Eigen::Vector3d(0, rho * g * dry.volume, 0);
+    h.torque = (h.centre_of_buoyancy - com).cross(h.force);
+    h.waterline_area = 0;
+    h.wetted_area = m_shape->getUnitShell().mass;  // shell of unit density and thickness: mass = area
+    return h;
 }
 
 btTransform btBuoyancyAction::getMeshInComFrame() const {
     return m_owner ? m_owner->getMeshInComFrame() : m_meshInCom;
 }
 
-void btBuoyancyAction::computeDrag(const Eigen::Vector3d& com, const Eigen::Vector3d& v, const Eigen::Vector3d& w,
+void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy::WaterPatch* patch,
+                                   const Eigen::Vector3d& com, const Eigen::Vector3d& v, const Eigen::Vector3d& w,
                                    double density, double time, Eigen::Vector3d& force, Eigen::Vector3d& torque,
                                    Eigen::Vector3d& meanWaterVelocity) {
     // DESIGN-NOTES 2.6 (paper eq. 12): per wetted sample, relative velocity v_i = v + ω × (p_i − c) − u(p_i);
     // pressure drag on front-facing samples F_i = −½ ρ C_d (A_i·v̂_i)|v_i|² v̂_i = −½ ρ C_d (A_i·v_i) v_i;
-    // skin friction on the tangential part −½ ρ C_f |A_i| |v_t| v_t.
-    const buoyancy::SurfaceSamples& s = m_shape->getDragSamples();
-    const std::size_t n = s.size();
+    // skin friction on the tangential part −½ ρ C_f |A_i| |v_t| v_t. The samples are the drag clusters
+    // (DESIGN-NOTES 2.5, drag level of detail; settings.dragClusters = 0 keeps every fine sample).
+    const buoyancy::DragClusters& c = *m_drag;
+    const std::size_t n = c.size();
     const btWaterSurface& water = *m_world->getWater();
-    water.velocitiesCached(m_ws.wx.data(), m_ws.wy.data(), m_ws.wz.data(), n, time, m_ux.data(), m_uy.data(),
-                           m_uz.data(), m_waterCache);
+    const Eigen::Matrix3d R = pose.linear();
+    const Eigen::Vector3d t = pose.translation();
+    const double r10 = R(1, 0), r11 = R(1, 1), r12 = R(1, 2);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double x = c.px[i], y = c.py[i], z = c.pz[i];
+        m_dx[i] = R(0, 0) * x + R(0, 1) * y + R(0, 2) * z + t.x();
+        m_dy[i] = r10 * x + r11 * y + r12 * z + t.y();
+        m_dz[i] = R(2, 0) * x + R(2, 1) * y + R(2, 2) * z + t.z();
+        const double ax = c.ax[i], ay = c.ay[i], az = c.az[i];
+        m_dax[i] = R(0, 0) * ax + R(0, 1) * ay + R(0, 2) * az;
+        m_day[i] = r10 * ax + r11 * ay + r12 * az;
+        m_daz[i] = R(2, 0) * ax + R(2, 1) * ay + R(2, 2) * az;
+        // Vertical half extent of the cluster (DESIGN-NOTES 2.4's covariance ramp): sqrt(3 r_yᵀ C r_y), r_y the
+        // world-y row of R; for one fine sample it is sqrt(area)/2 · sqrt(1 − n_y²) (SampleFormulas.h).
+        const double vy = r10 * (r10 * c.cxx[i] + r11 * c.cxy[i] + r12 * c.cxz[i]) +
+                          r11 * (r10 * c.cxy[i] + r11 * c.cyy[i] + r12 * c.cyz[i]) +
+                          r12 * (r10 * c.cxz[i] + r11 * c.cyz[i] + r12 * c.czz[i]);
+        m_dhalf[i] = std::sqrt(3.0 * std::max(vy, 0.0));
+    }
+    double flatH = 0;
+    const bool flat = water.isFlat(time, flatH);
+    if (flat)
+        std::fill(m_dh.begin(), m_dh.end(), flatH);
+    else if (patch)
+        patch->heights(m_dx.data(), m_dz.data(), n, m_dh.data());
+    else
+        water.heightsCached(m_dx.data(), m_dz.data(), n, time, m_dh.data(), m_dragCache);
+    if (flat || m_drag->probeX.size() >= n) {
+        water.velocitiesCached(m_dx.data(), m_dy.data(), m_dz.data(), n, time, m_ux.data(), m_uy.data(), m_uz.data(),
+                               m_dragCache);
+    } else {
+        // Velocity probes (DESIGN-NOTES 2.5): one query per probe, each cluster takes its probe's velocity.
+        const std::size_t np = m_drag->probeX.size();
+        for (std::size_t j = 0; j < np; ++j) {
+            const double x = m_drag->probeX[j], y = m_drag->probeY[j], z = m_drag->probeZ[j];
+            m_px[j] = R(0, 0) * x + R(0, 1) * y + R(0, 2) * z + t.x();
+            m_py[j] = r10 * x + r11 * y + r12 * z + t.y();
+            m_pz[j] = R(2, 0) * x + R(2, 1) * y + R(2, 2) * z + t.z();
+        }
+        water.velocitiesCached(m_px.data(), m_py.data(), m_pz.data(), np, time, m_pux.data(), m_puy.data(),
+                               m_puz.data(), m_probeCache);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint32_t j = m_drag->probeOf[i];
+            m_ux[i] = m_pux[j];
+            m_uy[i] = m_puy[j];
+            m_uz[i] = m_puz[j];
+        }
+    }
     const double kd = 0.5 * density * m_settings.dragCoefficient;
     const double kf = 0.5 * density * m_settings.skinFriction;
     const double kl = density * m_settings.linearDamping;
-    force.setZero();
-    torque.setZero();
-    Eigen::Vector3d uSum = Eigen::Vector3d::Zero();
-    double areaSum = 0;
+    // [issue 7, owner ocl] the per-sample drag lives in integrals/SampleFormulas.h, shared with the OpenCL kernels.
+    namespace fm = buoyancy::formulas;
+    double part[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    const double vb[3] = {v.x(), v.y(), v.z()}, wb[3] = {w.x(), w.y(), w.z()};
+    const double Rrow[9] = {R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2)};
     for (std::size_t i = 0; i < n; ++i) {
-        // Wet fraction of the sample: a linear ramp over its vertical extent, so a shallow draft still gets drag
-        // from the samples it half wets (all-or-nothing by centre left a light box with no sideways drag at all).
-        // A horizontal piece has no vertical extent: wet by its centre.
-        const double an0 = std::sqrt(m_ws.wax[i] * m_ws.wax[i] + m_ws.way[i] * m_ws.way[i] + m_ws.waz[i] * m_ws.waz[i]);
-        const double ny = an0 > 0 ? m_ws.way[i] / an0 : 0.0;
-        const double halfV = m_dragHalfSize[i] * std::sqrt(std::max(0.0, 1.0 - ny * ny));
-        const double depth = m_ws.waterHeight[i] - m_ws.wy[i];
-        const double wet = halfV > 0 ? std::min(1.0, std::max(0.0, 0.5 + 0.5 * depth / halfV)) : (depth > 0 ? 1.0 : 0.0);
+        // Wet fraction: the linear ramp over the cluster's vertical half extent (SampleFormulas.h).
+        const double wet = fm::bb_drag_wet_ramp(m_dhalf[i], m_dh[i] - m_dy[i]);
         if (!(wet > 0)) continue;
-        const Eigen::Vector3d r(m_ws.wx[i] - com.x(), m_ws.wy[i] - com.y(), m_ws.wz[i] - com.z());
-        const Eigen::Vector3d u(m_ux[i], m_uy[i], m_uz[i]);
-        const Eigen::Vector3d vi = v + w.cross(r) - u;
-        const Eigen::Vector3d A = wet * Eigen::Vector3d(m_ws.wax[i], m_ws.way[i], m_ws.waz[i]);
-        const double a = wet * s.area[i];
-        uSum += a * u;
-        areaSum += a;
-        Eigen::Vector3d f = Eigen::Vector3d::Zero();
-        const double av = A.dot(vi);
-        if (kd > 0 && av > 0) f -= kd * av * vi;
-        const double an = A.norm();
-        if (kl > 0 && an > 0) f -= (kl * av / an) * A;  // linear pressure damping −ρ b (A·v) Â
-        if (kf > 0) {
-            if (an > 0) {
-                const Eigen::Vector3d nrm = A / an;
-                const Eigen::Vector3d vt = vi - vi.dot(nrm) * nrm;
-                f -= kf * a * vt.norm() * vt;
-            }
-        }
-        force += f;
-        torque += r.cross(f);
+        const double r[3] = {m_dx[i] - com.x(), m_dy[i] - com.y(), m_dz[i] - com.z()};
+        const double u[3] = {m_ux[i], m_uy[i], m_uz[i]};
+        // Spread of the cluster (DESIGN-NOTES 2.5): a two-point rule along n × ω (bb_drag_cluster_accumulate,
+        // integrals/SampleFormulas.h, shared with the OpenCL kernel: issue 7).
+        const double C[6] = {c.cxx[i], c.cxy[i], c.cxz[i], c.cyy[i], c.cyz[i], c.czz[i]};
+        fm::bb_drag_cluster_accumulate(Rrow, C, r, vb, wb, u, m_dax[i], m_day[i], m_daz[i], c.area[i], wet, kd, kf, kl,
+                                       part);
     }
+    force = Eigen::Vector3d(part[0], part[1], part[2]);
+    torque = Eigen::Vector3d(part[3], part[4], part[5]);
+    const Eigen::Vector3d uSum(part[6], part[7], part[8]);
+    const double areaSum = part[9];
     meanWaterVelocity = areaSum > 0 ? Eigen::Vector3d(uSum / areaSum) : Eigen::Vector3d::Zero();
+}
+
+// ---- [issue 7, owner ocl] deformable bodies and device backends ----
+void btBuoyancyAction::setDeformable(std::shared_ptr<btBuoyancyDeformable> deformable) {
+    if (deformable && deformable->getSamples().size() != m_shape->getSamples().size())
+        throw std::invalid_argument("deformable: " + std::to_string(deformable->getSamples().size()) +
+                                    " samples, the action's shape has " + std::to_string(m_shape->getSamples().size()));
+    m_deformable = std::move(deformable);
+}
+
+const buoyancy::SurfaceSamples& btBuoyancyAction::getSamplesInUse() const {
+    return m_deformable ? m_deformable->getSamples() : m_shape->getSamples();
+}
+
+void btBuoyancyAction::dragEvaluationVelocity(const buoyancy::HydrostaticsResult& h, double dt, Eigen::Vector3d& v,
+                                              Eigen::Vector3d& w) const {
+    // Added mass as in updateAction (DESIGN-NOTES 2.7): (m + m_a) a = F − m g.
+    const double rho = m_world->getFluidDensity();
+    const double m = 1.0 / double(m_body->getInvMass());
+    const double ma = m_settings.addedMass ? m_settings.addedMassCoefficient * rho * std::max(h.submerged_volume, 0.0) : 0.0;
+    const double meff = m + ma;
+    const Eigen::Vector3d gravityAcc = toEigen(m_body->getGravity());
+    v = toEigen(m_body->getLinearVelocity());
+    w = toEigen(m_body->getAngularVelocity());
+    v += ((h.force - ma * gravityAcc) * dt) / meff + gravityAcc * dt;
+    w += toEigen(m_body->getInvInertiaTensorWorld() * toBullet(Eigen::Vector3d(h.torque * dt)));
 }
 
 void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) {
@@ -146,8 +260,9 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     }
 
     // Whole body above the highest water point: nothing to do (DESIGN-NOTES 2.5).
-    const Eigen::Vector3d bc = pose * m_shape->getBoundsCentre();
-    const double br = m_shape->getBoundsRadius();
+    // [issue 7] a deformable body's bounds follow its vertices
+    const Eigen::Vector3d bc = pose * (m_deformable ? m_deformable->getBoundsCentre() : m_shape->getBoundsCentre());
+    const double br = m_deformable ? m_deformable->getBoundsRadius() : m_shape->getBoundsRadius();
     double lo = 0, hi = 0;
     water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
     if (bc.y() - br >= hi) {
@@ -160,17 +275,38 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     }
     if (waves) m_body->activate();
 
+    // Fewer wave queries (DESIGN-NOTES 2.5): on a non-flat surface, one query per node of a small grid over
+    // the body's footprint, interpolated at every vertex, sample and drag cluster.
+    double flatH = 0;
+    const bool flat = water->isFlat(time, flatH);
+    const buoyancy::WaterPatch* patch = nullptr;
+    // Only for surfaces whose query is an iterative solve (Gerstner's Newton inversion): a grid, FFT or interactive
+    // surface answers by a lookup cheaper than the interpolation, and its short ripples would be smoothed away.
+    if (!flat && m_settings.waterPatchNodes > 0 && dynamic_cast<const btGerstnerWaterSurface*>(water)) {
+        try {
+            m_patch.build(*water, bc.x(), bc.z(), br, time, m_settings.waterPatchNodes, m_patchCache);
+            if (m_patch.finite()) patch = &m_patch;
+        } catch (const std::exception&) {
+            patch = nullptr;  // a degenerate footprint: fall back to exact queries
+        }
+    }
+
     const btBuoyancyMethod method = m_shape->getMethod();
     buoyancy::HydrostaticsResult h;
-    bool wsFilled = false;
+    bool onDevice = false;  // [issue 7] h came from the world's device backend
     if (m_settings.buoyancyEnabled) {
         try {  // never let an exception escape into Bullet's stepSimulation
-            if (method == btBuoyancyMethod::ExactMesh) {
-                h = buoyancy::clippedHydrostatics(m_shape->getMesh(), pose, *water, time, rho, g, com);
+            if (flat && bc.y() + br <= flatH && !m_deformable) {
+                h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (DESIGN-NOTES 2.5)
+            } else if (method == btBuoyancyMethod::ExactMesh) {
+                h = buoyancy::clippedHydrostatics(m_shape->getMesh(), pose, *water, time, rho, g, com, patch);
             } else {
-                h = buoyancy::sampledHydrostatics(m_shape->getSamples(), pose, *water, time, rho, g, com, m_ws,
-                                                  &m_waterCache);
-                wsFilled = true;
+                btBuoyancyDeviceBackend* dev = m_world->getDeviceBackend();  // [issue 7] batched on a device
+                if (dev && dev->hydrostatics(*this, pose, com, h))
+                    onDevice = true;
+                else
+                    h = buoyancy::sampledHydrostatics(getSamplesInUse(), pose, *water, time, rho, g, com, m_ws,
+                                                      &m_waterCache, patch);
             }
         } catch (const std::exception&) {
             ++m_rejected;
@@ -188,22 +324,13 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     // Drag is evaluated at the velocity the next substep will integrate: this substep's hydrostatic kick
     // plus the gravity kick Bullet applies next. At rest in equilibrium that is exactly 0, so drag cannot
     // shift the draft (with the bare body velocity, −g·dt at rest, linear damping would sink it by b·g·dt/g).
-    Eigen::Vector3d v = toEigen(m_body->getLinearVelocity());
-    Eigen::Vector3d w = toEigen(m_body->getAngularVelocity());
-    v += ((h.force - ma * gravityAcc) * dt) / meff + gravityAcc * dt;
-    w += toEigen(m_body->getInvInertiaTensorWorld() * toBullet(Eigen::Vector3d(h.torque * dt)));
+    Eigen::Vector3d v, w;
+    dragEvaluationVelocity(h, dt, v, w);
     Eigen::Vector3d dragF = Eigen::Vector3d::Zero(), dragT = Eigen::Vector3d::Zero(), uMean = Eigen::Vector3d::Zero();
     const bool dragOn =
         m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 || m_settings.linearDamping > 0;
-    if (dragOn) {
-        if (!wsFilled) {
-            const buoyancy::SurfaceSamples& s = m_shape->getDragSamples();
-            buoyancy::transformSamples(s, pose, m_ws);
-            water->heightsCached(m_ws.wx.data(), m_ws.wz.data(), s.size(), time, m_ws.waterHeight.data(),
-                                 m_waterCache);
-        }
-        computeDrag(com, v, w, rho, time, dragF, dragT, uMean);
-    }
+    if (dragOn && !(onDevice && m_world->getDeviceBackend()->drag(*this, com, v, w, dragF, dragT, uMean)))  // [issue 7]
+        computeDrag(pose, patch, com, v, w, rho, time, dragF, dragT, uMean);
 
     // Drag stability (DESIGN-NOTES 2.6): scale the drag impulse (J, L) by s so it can never add relative
     // kinetic energy nor reverse the relative motion. In the mass metric ⟨x,y⟩ = m_eff x_v·y_v + x_ω·I y_ω,

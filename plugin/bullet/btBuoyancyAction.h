@@ -12,7 +12,9 @@
 
 #include "bullet/btBuoyancySettings.h"
 #include "bullet/btBuoyancyShape.h"
+#include "integrals/DragClusters.h"
 #include "integrals/Hydrostatics.h"
+#include "integrals/WaterPatch.h"
 #include "water/btWaterSurface.h"
 
 #include <BulletDynamics/Dynamics/btActionInterface.h>
@@ -25,6 +27,7 @@
 class btRigidBody;
 class btBuoyancyWorld;
 class btBuoyantBody;
+class btBuoyancyDeformable;
 
 /// What the last substep computed for one body (world frame). Forces are the ones applied (after the drag
 /// stability limit); torques are about the body's centre of mass.
@@ -80,12 +83,38 @@ public:
     void setMeshInComFrame(const btTransform& meshInCom) { m_meshInCom = meshInCom; }
     /// The mesh frame in the body's COM frame currently used.
     btTransform getMeshInComFrame() const;
+    /// The drag samples in use: the shape's fine drag samples merged into at most settings.dragClusters
+    /// clusters (DESIGN-NOTES 2.5; shared between the actions of one shape at one setting).
+    const buoyancy::DragClusters& getDragClusters() const { return *m_drag; }
     /// Number of substeps whose impulses were rejected as non-finite (should stay 0).
     std::uint64_t getRejectedCount() const { return m_rejected; }
 
+    ///@name [issue 7, owner ocl] Deformable bodies and device backends
+    /// Deformable body (paper Fig. 17): use `deformable`'s samples, re-baked from animated vertices
+    /// (btBuoyancyDeformable::setVertices), instead of the shape's; nullptr: the shape's again.
+    /// @throws std::invalid_argument when its sample count differs from the shape's
+    void setDeformable(std::shared_ptr<btBuoyancyDeformable> deformable);
+    /// The deformable samples in use, or nullptr.
+    const std::shared_ptr<btBuoyancyDeformable>& getDeformable() const { return m_deformable; }
+    /// The hydrostatic samples in use: the deformable's, or the shape's.
+    const buoyancy::SurfaceSamples& getSamplesInUse() const;
+    /// The velocities drag is evaluated at, given this substep's hydrostatics `h` (see updateAction): the body's
+    /// velocity plus this substep's hydrostatic kick (with added mass) plus the gravity kick of the next one.
+    /// Public so a batching backend evaluates every body's drag at exactly the velocity the action would.
+    /// @param dt  substep, s   @param[out] v  m/s   @param[out] w  rad/s
+    void dragEvaluationVelocity(const buoyancy::HydrostaticsResult& h, double dt, Eigen::Vector3d& v,
+                                Eigen::Vector3d& w) const;
+    ///@}
+
 private:
-    void computeDrag(const Eigen::Vector3d& com, const Eigen::Vector3d& v, const Eigen::Vector3d& w, double density,
-                     double time, Eigen::Vector3d& force, Eigen::Vector3d& torque, Eigen::Vector3d& meanWaterVelocity);
+    void computeDrag(const Eigen::Isometry3d& pose, const buoyancy::WaterPatch* patch, const Eigen::Vector3d& com,
+                     const Eigen::Vector3d& v, const Eigen::Vector3d& w, double density, double time,
+                     Eigen::Vector3d& force, Eigen::Vector3d& torque, Eigen::Vector3d& meanWaterVelocity);
+    /// (Re)select the shared drag clusters for the current settings and size the drag workspace.
+    void selectDragClusters();
+    /// Whole body below the lowest water point of flat water: the closed form from the dry mass properties.
+    buoyancy::HydrostaticsResult submergedClosedForm(const Eigen::Isometry3d& pose, double rho, double g,
+                                                     const Eigen::Vector3d& com) const;
 
     btRigidBody* m_body;
     std::shared_ptr<const btBuoyancyShape> m_shape;
@@ -96,17 +125,24 @@ private:
     btBuoyancyResult m_result;
     std::uint64_t m_lastSubstep = 0;
     std::uint64_t m_rejected = 0;
+    std::shared_ptr<btBuoyancyDeformable> m_deformable;  ///< issue 7: re-baked samples of a deformable body
     /// True until the first hydrostatic kick after creation or sleep: Bullet has already applied gravity for
     /// a substep whose buoyancy kick (at the starting pose) was never given; see updateAction.
     bool m_needsPrime = true;
     // Workspace sized once (no allocation per substep).
     buoyancy::SampleWorkspace m_ws;
-    std::vector<double> m_ux, m_uy, m_uz;
-    /// Warm-start memory of the water queries on m_ws's points (heights, then velocities for drag).
+    /// Warm-start memory of the water queries on m_ws's points (hydrostatic samples).
     btWaterQueryCache m_waterCache;
-    /// Per drag sample: half its size, sqrt(area)/2, m; with the sample's tilt it gives the vertical half extent
-    /// over which drag ramps from dry to wet (DESIGN-NOTES 2.4's wet fraction, applied to drag only).
-    std::vector<double> m_dragHalfSize;
+    /// Drag level of detail (DESIGN-NOTES 2.5): clusters of the shape's drag samples, and their world-frame
+    /// workspace (positions, area vectors, vertical half extents, water heights and velocities).
+    std::shared_ptr<const buoyancy::DragClusters> m_drag;
+    std::vector<double> m_dx, m_dy, m_dz, m_dax, m_day, m_daz, m_dhalf, m_dh, m_ux, m_uy, m_uz;
+    btWaterQueryCache m_dragCache;   ///< warm start of the height and velocity queries at the cluster points
+    std::vector<double> m_px, m_py, m_pz, m_pux, m_puy, m_puz; ///< velocity probes: world points and velocities
+    btWaterQueryCache m_probeCache;  ///< warm start of the velocity queries at the probes
+    /// Fewer wave queries (DESIGN-NOTES 2.5): the per-body grid of water heights, and its warm start.
+    buoyancy::WaterPatch m_patch;
+    btWaterQueryCache m_patchCache;
     /// @name Sleeping: Bullet tests the stored velocity, which at rest on the water is +g·dt, not 0 (the kick for
     /// the next substep comes after integration: symplectic Euler, DESIGN-NOTES 3). The action tests the COM's
     /// real displacement over the substep against the body's own thresholds instead, and opens or closes

@@ -1,8 +1,10 @@
 #include "bullet/btBuoyancySettings.h"
 
 #include "integrals/BuoyancyMethod.h"
+#include "integrals/LevelOfDetail.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace {
@@ -51,19 +53,66 @@ void btBuoyancySettings::validate() const {
     if (textureSize < 0 || textureSize > 16384)
         throw std::invalid_argument("textureSize: must be 0 (default) or in 1..16384 (got " +
                                     std::to_string(textureSize) + ")");
+    if (dragClusters < 0 || dragClusters > 1000000)
+        throw std::invalid_argument("dragClusters: must be in 0..1000000 (got " + std::to_string(dragClusters) + ")");
+    if (waterVelocityProbes < 0 || waterVelocityProbes > 1000000)
+        throw std::invalid_argument("waterVelocityProbes: must be in 0..1000000 (got " + std::to_string(waterVelocityProbes) + ")");
+    if (waterPatchNodes != 0 && (waterPatchNodes < 5 || waterPatchNodes > 64))
+        throw std::invalid_argument("waterPatchNodes: must be 0 (exact queries) or in 5..64 (got " +
+                                    std::to_string(waterPatchNodes) + ")");
+    requireNonNegative(errorBudget, "errorBudget");
     requireNonNegative(dragCoefficient, "dragCoefficient");
     requireNonNegative(skinFriction, "skinFriction");
     requireNonNegative(linearDamping, "linearDamping");
     requireNonNegative(addedMassCoefficient, "addedMassCoefficient");
 }
 
+namespace {
+bool budgetApplies(const btBuoyancySettings& s) {
+    return s.errorBudget > 0 && s.method != btBuoyancyMethod::ExactMesh;
+}
+}  // namespace
+
 btBuoyancyMethod btBuoyancyResolveMethod(const btBuoyancySettings& settings, std::size_t triangleCount) {
+    if (budgetApplies(settings))
+        return fromCore(buoyancy::pickLevelOfDetail(settings.errorBudget, toCore(settings.method), triangleCount).picked.method);
     return fromCore(buoyancy::resolveMethod(toCore(settings.method), triangleCount));
 }
 
 int btBuoyancyResolveTextureSize(const btBuoyancySettings& settings, btBuoyancyMethod resolved) {
     if (settings.textureSize > 0) return settings.textureSize;
+    if (budgetApplies(settings) && resolved != btBuoyancyMethod::ExactMesh) {
+        // The budget's pick for that method (the triangle count does not change a texture method's N).
+        const btBuoyancyMethod m = settings.method == btBuoyancyMethod::Auto ? resolved : settings.method;
+        return buoyancy::pickLevelOfDetail(settings.errorBudget, toCore(m), 0).picked.textureSize;
+    }
     if (resolved == btBuoyancyMethod::ExactMesh) return 0;
     if (settings.method == btBuoyancyMethod::Auto) return buoyancy::kDefaultLargeMeshTexture;
     return buoyancy::defaultTextureSize(toCore(resolved));
+}
+
+btBuoyancyLevelOfDetail btBuoyancyPickLevelOfDetail(const btBuoyancySettings& settings, std::size_t triangleCount) {
+    settings.validate();
+    btBuoyancyLevelOfDetail out;
+    out.method = btBuoyancyResolveMethod(settings, triangleCount);
+    out.textureSize = out.method == btBuoyancyMethod::ExactMesh ? 0 : btBuoyancyResolveTextureSize(settings, out.method);
+    out.budgetPct = settings.errorBudget;
+    // The model's error for what is used (an explicit textureSize may differ from the budget's pick).
+    for (const buoyancy::LodCandidate& c : buoyancy::lodCandidates(toCore(out.method), triangleCount))
+        if (c.textureSize == out.textureSize) out.modelVolumeErrorPct = c.volumeErrorPct;
+    const std::string what = std::string(btBuoyancyMethodName(out.method)) +
+                             (out.textureSize ? " " + std::to_string(out.textureSize) : std::string());
+    if (budgetApplies(settings)) {
+        const buoyancy::LodChoice c = buoyancy::pickLevelOfDetail(settings.errorBudget, toCore(settings.method), triangleCount);
+        out.withinBudget = c.withinBudget && out.modelVolumeErrorPct <= settings.errorBudget;
+        out.description = (settings.textureSize > 0 ? what + " (textureSize given; budget's pick: " + c.description + ")"
+                                                    : c.description);
+    } else {
+        char b[64];
+        std::snprintf(b, sizeof b, "%.2g", out.modelVolumeErrorPct);
+        out.description = what + (settings.errorBudget > 0 ? " (method given; no budget pick)"
+                                                           : " (library default, no error budget; model worst volume error " +
+                                                                 std::string(b) + " %)");
+    }
+    return out;
 }

@@ -29,6 +29,13 @@ struct btBuoyancySettings {
     /// the resolved method (buoyancy::defaultTextureSize; 512 when Auto picks exact-coverage).
     int textureSize = 0;
     bool preferModelUvs = true;         ///< sampled methods: use the model's UVs when they are a valid layout
+    /// Automatic level of detail (issue 9): the worst submerged-volume error allowed, % of the body's volume
+    /// (e.g. 0.1). When > 0 and `method` is Auto, the method and texture size are picked as the cheapest
+    /// configuration whose measured worst error (docs/benchmarks, × 2 margin) fits
+    /// (btBuoyancyPickLevelOfDetail says which); with ExactCoverage or TexelCentre only N is picked. An explicit
+    /// textureSize > 0 still wins. 0 (default) = no budget: the library default rule (exact-mesh up to 131072
+    /// triangles, else exact-coverage 512²).
+    double errorBudget = 0.0;
 
     ///@name Drag (DESIGN-NOTES 2.6, paper eq. 12)
     /// Pressure-drag coefficient C_d per front-facing wetted sample, dimensionless, ≥ 0; 0 turns pressure drag
@@ -44,6 +51,26 @@ struct btBuoyancySettings {
     /// a damping ratio ζ = b sqrt(ρ A) / (2 sqrt(g m)): 0.3 gives ζ ≈ 0.1 for a 2×0.4×1 m plank at s = 0.75,
     /// ≈ 0.2 for a 10 cm cube at s = 0.5. 0 turns it off (then a small bobbing decays only like 1/t).
     double linearDamping = 0.3;
+
+    ///@name Level of detail (DESIGN-NOTES 2.5: doing less work)
+    /// Drag level of detail: at most this many drag samples per body, made by merging the shape's fine drag
+    /// samples (face sub-samples or texture samples) into clusters of nearby samples facing about the same way
+    /// (buoyancy::clusterDragSamples). One water query per cluster instead of per fine sample. 0 = no merging
+    /// (every fine sample). Each cluster is evaluated at two points along its spread, so a rotating face keeps its
+    /// damping torque. Typical 64–1024; default 256 (64 left a rolling log and a light floating cylinder
+    /// under-damped in tests/bullet; the drag error against the fine sum is in docs/benchmarks/drag_lod.csv — drag
+    /// coefficients are uncertain to ±20 % anyway). 0..1000000.
+    int dragClusters = 256;
+    /// Water-velocity probes for drag on a non-flat or moving surface: the water velocity is queried at this
+    /// many points (the drag clusters merged again) and each cluster uses its nearest probe's velocity
+    /// (buoyancy::assignVelocityProbes). 0 = one query per cluster. Default 32. 0..1000000.
+    int waterVelocityProbes = 32;
+    /// Wave queries: on a Gerstner surface (whose query is a Newton inversion; grid, FFT and interactive surfaces
+    /// answer by a cheaper lookup and are always queried exactly) the water height under the body is queried on a waterPatchNodes ×
+    /// waterPatchNodes grid over its footprint and interpolated (buoyancy::WaterPatch, bicubic) instead of
+    /// queried at every vertex / sample. 0 = query every point exactly. 5..64 otherwise; default 8 (the error it
+    /// adds is measured in docs/benchmarks). Flat water is never affected.
+    int waterPatchNodes = 8;
 
     ///@name Added mass (DESIGN-NOTES 2.7)
     /// Apply added mass m_a = C_a ρ_w V_sub to the linear motion (one scalar, Stonefish-style; rotation has
@@ -62,5 +89,20 @@ struct btBuoyancySettings {
 /// buoyancy::resolveMethod, the one place that decides the library default); others are returned unchanged.
 btBuoyancyMethod btBuoyancyResolveMethod(const btBuoyancySettings& settings, std::size_t triangleCount);
 
-/// The texture size used for a resolved sampled method: settings.textureSize, or the library default when 0.
+/// The texture size used for a resolved sampled method: settings.textureSize, or the budget's pick
+/// (errorBudget > 0), or the library default when 0.
 int btBuoyancyResolveTextureSize(const btBuoyancySettings& settings, btBuoyancyMethod resolved);
+
+/// What the automatic level of detail picked for a mesh (issue 9).
+struct btBuoyancyLevelOfDetail {
+    btBuoyancyMethod method = btBuoyancyMethod::ExactMesh; ///< concrete method
+    int textureSize = 0;                ///< N (0 for exact-mesh)
+    double modelVolumeErrorPct = 0;     ///< the error model's worst volume error for it, % of the volume
+    double budgetPct = 0;               ///< settings.errorBudget (0: no budget, the library default rule)
+    bool withinBudget = true;           ///< false when no configuration fits (the most accurate one is used)
+    std::string description;            ///< one line for logs and the CLI, e.g. "exact-coverage 128 (…)"
+};
+
+/// The method and texture size `settings` resolve to for a mesh of `triangleCount` triangles, and why
+/// (the same decision btBuoyancyShape::create makes). @throws std::invalid_argument for bad settings
+btBuoyancyLevelOfDetail btBuoyancyPickLevelOfDetail(const btBuoyancySettings& settings, std::size_t triangleCount);

@@ -1,5 +1,7 @@
 #include "bullet/btBuoyancyWorld.h"
 
+#include "opencl/btBuoyancyDeviceBackend.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -29,9 +31,14 @@ void btBuoyancyWorld::beginSubstepIfNew(std::uint64_t& lastSeen, double dt) {
     if (m_substep == 0 || lastSeen == m_substep) {
         ++m_substep;
         m_time += dt;
-        // A batching backend computes every registered action's result here.
+        // A batching backend computes every registered action's result from here on (at the first request).
+        if (m_device) m_device->beginSubstep(dt);  // issue 7
     }
     lastSeen = m_substep;
+}
+
+void btBuoyancyWorld::setDeviceBackend(std::unique_ptr<btBuoyancyDeviceBackend> backend) {
+    m_device = std::move(backend);
 }
 
 void btBuoyancyWorld::registerAction(btBuoyancyAction* action) { m_actions.push_back(action); }

@@ -6,10 +6,19 @@
 /// and let the others read their result.
 
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <vector>
 
 class btWaterSurface;
 class btBuoyancyAction;
+class btBuoyancyDeviceBackend;
+
+/// Where the sampled bodies of a world are computed (issue 7, docs/opencl.md).
+enum class btBuoyancyCompute {
+    Cpu,    ///< each action on the CPU (default)
+    OpenCl, ///< every body of the world in one batched launch set per substep on an OpenCL device
+};
 
 /// Shared buoyancy context of one dynamics world.
 class btBuoyancyWorld {
@@ -54,6 +63,22 @@ public:
     /// @param lastSeen  the action's own record of the substep it last ran in (updated)
     void beginSubstepIfNew(std::uint64_t& lastSeen, double dt);
 
+    ///@name Compute backend (issue 7, docs/opencl.md)
+    /// Select where the sampled bodies of this world are computed. OpenCl: one batched launch set per substep on
+    /// the first OpenCL GPU, else the first device (env BULLET_BUOYANCY_OPENCL_DEVICE=n picks device n), double
+    /// precision when the device has cl_khr_fp64. When the library was built without OpenCL, or no platform or
+    /// device works, the CPU path stays selected and `message` says why: never an exception for that.
+    /// @param message  optional: the reason of a failure, or the device and precision chosen
+    /// @return true when `compute` is now in use
+    bool setCompute(btBuoyancyCompute compute, std::string* message = nullptr);
+    /// The backend in use.
+    btBuoyancyCompute getCompute() const { return m_device ? btBuoyancyCompute::OpenCl : btBuoyancyCompute::Cpu; }
+    /// Install a backend built by hand (e.g. btOpenClBuoyancyBackend::create with options); owned. nullptr: CPU.
+    void setDeviceBackend(std::unique_ptr<btBuoyancyDeviceBackend> backend);
+    /// The installed backend, or nullptr (CPU).
+    btBuoyancyDeviceBackend* getDeviceBackend() const { return m_device.get(); }
+    ///@}
+
     /// Internal: actions register and unregister themselves.
     void registerAction(btBuoyancyAction* action);
     void unregisterAction(btBuoyancyAction* action);
@@ -65,4 +90,5 @@ private:
     double m_time = 0;
     std::uint64_t m_substep = 0;
     std::vector<btBuoyancyAction*> m_actions;
+    std::unique_ptr<btBuoyancyDeviceBackend> m_device;  ///< issue 7: batching backend, nullptr = CPU
 };

@@ -18,9 +18,12 @@ double sphereRadius(double capacity) { return std::cbrt(3.0 * capacity / (4.0 * 
 /// Cap of height k of a sphere of radius R: volume, textbook.
 double capVolume(double R, double k) { return kPi * k * k * (3.0 * R - k) / 3.0; }
 
-/// Clip triangle (a, b, c) to x·up ≤ h and add the signed tetrahedra from p0 (a point of the plane).
+/// Clip triangle (a, b, c) to x·up ≤ h and add the signed tetrahedra from p0 (a point of the plane): volume,
+/// first moment and (when `second` is not null) second moment ∫ x xᵀ dV = v/20 (Σ p pᵀ + s sᵀ), s = Σ p over
+/// the four corners (exact for a tetrahedron: Tonon, J. Math. Stat. 1(1), 2004).
 void clipTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                  const Eigen::Vector3d& up, double h, const Eigen::Vector3d& p0, double& vol, Eigen::Vector3d& mom) {
+                  const Eigen::Vector3d& up, double h, const Eigen::Vector3d& p0, double& vol, Eigen::Vector3d& mom,
+                  Eigen::Matrix3d* second) {
     const Eigen::Vector3d in[3] = {a, b, c};
     Eigen::Vector3d out[4];
     int n = 0;
@@ -35,14 +38,21 @@ void clipTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eige
         const Eigen::Vector3d u = out[0] - p0, v = out[i] - p0, w = out[i + 1] - p0;
         const double tv = u.dot(v.cross(w)) / 6.0;
         vol += tv;
-        mom += tv * (p0 + out[0] + out[i] + out[i + 1]) / 4.0;
+        const Eigen::Vector3d sum = p0 + out[0] + out[i] + out[i + 1];
+        mom += tv * sum / 4.0;
+        if (second) {
+            const Eigen::Matrix3d pp = p0 * p0.transpose() + out[0] * out[0].transpose() +
+                                       out[i] * out[i].transpose() + out[i + 1] * out[i + 1].transpose();
+            *second += (tv / 20.0) * (pp + sum * sum.transpose());
+        }
     }
 }
 
-}  // namespace
-
-double boxVolumeBelowPlane(const Eigen::Vector3d& half, const Eigen::Vector3d& up, double h, Eigen::Vector3d& moment) {
+/// Volume, first and second moments of the box part below the plane (see boxVolumeBelowPlane).
+double boxBelowPlane(const Eigen::Vector3d& half, const Eigen::Vector3d& up, double h, Eigen::Vector3d& moment,
+                     Eigen::Matrix3d* second) {
     moment.setZero();
+    if (second) second->setZero();
     double vol = 0;
     const Eigen::Vector3d p0 = h * up;
     // The six faces, outward, each as two triangles.
@@ -58,15 +68,21 @@ double boxVolumeBelowPlane(const Eigen::Vector3d& half, const Eigen::Vector3d& u
             }
             // (u, v, axis) is right-handed: counter-clockwise in (u, v) faces +axis.
             if (s > 0) {
-                clipTriangle(corner[0], corner[1], corner[2], up, h, p0, vol, moment);
-                clipTriangle(corner[0], corner[2], corner[3], up, h, p0, vol, moment);
+                clipTriangle(corner[0], corner[1], corner[2], up, h, p0, vol, moment, second);
+                clipTriangle(corner[0], corner[2], corner[3], up, h, p0, vol, moment, second);
             } else {
-                clipTriangle(corner[0], corner[2], corner[1], up, h, p0, vol, moment);
-                clipTriangle(corner[0], corner[3], corner[2], up, h, p0, vol, moment);
+                clipTriangle(corner[0], corner[2], corner[1], up, h, p0, vol, moment, second);
+                clipTriangle(corner[0], corner[3], corner[2], up, h, p0, vol, moment, second);
             }
         }
     }
     return vol;
+}
+
+}  // namespace
+
+double boxVolumeBelowPlane(const Eigen::Vector3d& half, const Eigen::Vector3d& up, double h, Eigen::Vector3d& moment) {
+    return boxBelowPlane(half, up, h, moment, nullptr);
 }
 
 double nodeHalfHeight(const WaterNode& node, const Eigen::Vector3d& up) {
@@ -120,6 +136,40 @@ Eigen::Vector3d nodeWaterCentroid(const WaterNode& node, const Eigen::Vector3d& 
     const double k = std::clamp(h + R, 0.0, 2.0 * R);
     const double d = 3.0 * (2.0 * R - k) * (2.0 * R - k) / (4.0 * (3.0 * R - k));
     return node.position - d * up;
+}
+
+Eigen::Matrix3d nodeWaterInertia(const WaterNode& node, const Eigen::Vector3d& up, double volume) {
+    if (!(volume > 0)) return Eigen::Matrix3d::Zero();
+    const double v = std::min(volume, node.capacity);
+    const double h = nodeLevelForVolume(node, up, v);
+    if (node.shape == WaterNodeShape::Box) {
+        Eigen::Vector3d m;
+        Eigen::Matrix3d second;
+        const double vg = boxBelowPlane(0.5 * node.size, up, h, m, &second);
+        if (!(vg > 0)) return Eigen::Matrix3d::Zero();
+        const Eigen::Vector3d c = m / vg;
+        const Eigen::Matrix3d cov = second - vg * c * c.transpose();  // about the water's centroid
+        const Eigen::Matrix3d inertia = cov.trace() * Eigen::Matrix3d::Identity() - cov;
+        return (v / vg) * inertia;  // the box's geometry scaled to the node's volume (as nodeVolumeBelow)
+    }
+    // Sphere: the water is the bottom cap s = z + R in [0, k] of a sphere of radius R (z along up from the
+    // centre); slices are discs of radius² s(2R − s). Integrals in s (no cancellation for a small cap):
+    //   V = π (R k² − k³/3),  ∫ s dV = π (2R k³/3 − k⁴/4),  ∫ s² dV = π (R k⁴/2 − k⁵/5),
+    //   ∫ x² dV = (π/4) ∫ s²(2R − s)² ds = (π/4)(4R² k³/3 − R k⁴ + k⁵/5)  (a disc: ∫ x² dA = π ρ⁴ / 4).
+    const double R = nodeHalfHeight(node, up);
+    const double k = std::clamp(h + R, 0.0, 2.0 * R);
+    if (!(k > 0)) return Eigen::Matrix3d::Zero();
+    const double k2 = k * k, k3 = k2 * k, k4 = k3 * k, k5 = k4 * k;
+    const double V = kPi * (R * k2 - k3 / 3.0);
+    const double S1 = kPi * (2.0 * R * k3 / 3.0 - k4 / 4.0);
+    const double S2 = kPi * (R * k4 / 2.0 - k5 / 5.0);
+    const double Sxx = 0.25 * kPi * (4.0 * R * R * k3 / 3.0 - R * k4 + k5 / 5.0);
+    if (!(V > 0)) return Eigen::Matrix3d::Zero();
+    const double sc = S1 / V;
+    const double axial = 2.0 * Sxx;                                  // about the up axis
+    const double transverse = Sxx + std::max(0.0, S2 - V * sc * sc); // about a horizontal axis through the centroid
+    const Eigen::Matrix3d uu = up * up.transpose();
+    return (v / V) * (transverse * (Eigen::Matrix3d::Identity() - uu) + axial * uu);
 }
 
 }  // namespace buoyancy

@@ -30,6 +30,12 @@ double nodeLevelForVolume(const WaterNode& node, const Eigen::Vector3d& up, doub
 /// Centre of the node's water when it holds `volume`, body frame, m (the node position when full or empty).
 Eigen::Vector3d nodeWaterCentroid(const WaterNode& node, const Eigen::Vector3d& up, double volume);
 
+/// Inertia of the node's water about its own centroid, body axes, for a density of 1 kg/m³ (kg·m² per kg/m³):
+/// the rigid inertia of the water's shape (sphere model: the bottom spherical cap, closed form; box model: the
+/// box clipped by the level plane, exact polyhedral second moments), scaled to `volume`. Zero when empty.
+/// Multiply by ρ; add the parallel-axis term for another point (WaterMassProperties).
+Eigen::Matrix3d nodeWaterInertia(const WaterNode& node, const Eigen::Vector3d& up, double volume);
+
 /// Exact volume and first moment of the part of an axis-aligned box (centred at the origin, half extents
 /// `half`) below the plane x·up = h (up unit). Signed tetrahedra from a point of the plane, so the cap
 /// face contributes nothing (divergence theorem). @param[out] moment ∫x dV, m⁴

@@ -49,6 +49,13 @@ enum class WaterFlowModel {
     Diffusion,  ///< Fick's law between neighbours on the fill fraction (soaking materials, plush toy)
 };
 
+/// How the water of each node contributes to the inertia (paper eq. 17 vs its shape).
+enum class WaterInertiaModel {
+    Shape,      ///< the rigid inertia of each node's water shape (sphere cap / clipped box) about its centroid,
+                ///< plus the parallel-axis terms (default; NodeLevel nodeWaterInertia)
+    PointMass,  ///< paper eq. 17: each node's water as a point mass at its centroid
+};
+
 /// A whole water graph with its simulation parameters.
 struct WaterGraph {
     std::vector<WaterNode> nodes;  ///< at least one
@@ -59,6 +66,7 @@ struct WaterGraph {
     double dischargeCoefficient = 0.61; ///< C_d of orifices (sharp-edged hole ≈ 0.61), in (0, 1]
     double viscosity = 1.0e-3;          ///< dynamic viscosity μ, Pa·s (water at 20 °C: 1.0e-3), > 0
     double diffusivity = 1.0e-3;        ///< Diffusion mode: D, m²/s; flux D π r² Δc / L, > 0
+    WaterInertiaModel inertia = WaterInertiaModel::Shape; ///< see WaterInertiaModel
 
     /// Index of the node called `name`, or -1.
     int findNode(const std::string& name) const;

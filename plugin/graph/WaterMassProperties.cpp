@@ -1,5 +1,7 @@
 #include "graph/WaterMassProperties.h"
 
+#include "graph/NodeLevel.h"
+
 namespace buoyancy {
 
 Eigen::Matrix3d parallelAxisTerm(double mass, const Eigen::Vector3d& d) {
@@ -20,11 +22,15 @@ MassProperties waterMassProperties(const WaterGraphState& state, double fluidDen
     }
     if (!(mp.mass > 0)) return MassProperties();
     mp.centre = moment / mp.mass;
-    // Eq. 17 about the water's own centre: Σ m_n ((r_n − C_G)² E − (r_n − C_G)(r_n − C_G)ᵀ).
+    // Eq. 17 about the water's own centre: Σ m_n ((r_n − C_G)² E − (r_n − C_G)(r_n − C_G)ᵀ), plus (Shape
+    // model) each node's water inertia about its own centroid (sphere cap / clipped box, NodeLevel.h).
+    const bool shape = state.graph().inertia == WaterInertiaModel::Shape;
     for (std::size_t i = 0; i < n; ++i) {
         const double v = state.water(int(i));
         if (!(v > 0)) continue;
         mp.inertia += parallelAxisTerm(fluidDensity * v, state.waterCentroid(int(i)) - mp.centre);
+        if (shape)
+            mp.inertia += fluidDensity * nodeWaterInertia(state.graph().nodes[i], state.upInBody(), v);
     }
     return mp;
 }

@@ -14,8 +14,10 @@
 
 namespace buoyancy {
 
-/// Water of the graph as point masses at the nodes' water centroids, body frame: mass (kg), volume (m³),
-/// centre (m) and inertia about that centre (kg·m²). All zero when the graph is dry.
+/// Water of the graph, body frame: mass (kg), volume (m³), centre (m) and inertia about that centre (kg·m²).
+/// Each node's water sits at its free-surface centroid; its inertia is a point mass there (paper eq. 17,
+/// WaterInertiaModel::PointMass) or, by default, the rigid inertia of its shape (sphere cap / clipped box)
+/// about that centroid plus the parallel-axis term. All zero when the graph is dry.
 /// @param fluidDensity ρ, kg/m³
 MassProperties waterMassProperties(const WaterGraphState& state, double fluidDensity);
 

@@ -15,6 +15,7 @@
 
 #include "graph/WaterGraph.h"
 #include "graph/WaterGraphState.h"
+#include "graph/PermeabilityMap.h"
 #include "graph/WaterIngress.h"
 #include "integrals/MassProperties.h"
 
@@ -55,6 +56,10 @@ public:
     /// Replace the permeable samples at run time (e.g. a hit opens a hole). Nodes out of range are refused.
     /// @throws std::invalid_argument
     void setPermeableSamples(buoyancy::PermeableSamples holes);
+    /// Replace the permeable samples by those of a per-sample map (e.g. after PermeabilityMap::paintSphere for
+    /// a hit). The map must belong to this body's graph (same node count). All-or-nothing.
+    /// @throws std::invalid_argument
+    void setPermeability(const buoyancy::PermeabilityMap& map) { setPermeableSamples(map.permeableSamples()); }
     /// The permeable samples in use.
     const buoyancy::PermeableSamples& getPermeableSamples() const { return m_holes; }
     /// The dry body's mass properties, mesh frame (mass kg, centre m, inertia about the centre kg·m²).

@@ -6,6 +6,7 @@
 /// triangle is replaced by the plane through its corners' heights: an approximation, not exact.
 
 #include "integrals/Hydrostatics.h"
+#include "integrals/WaterPatch.h"
 #include "water/btWaterSurface.h"
 
 #include <algorithm>
@@ -76,6 +77,13 @@ struct Integrals {
 HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
                                        const btWaterSurface& water, double time, double fluidDensity,
                                        double gravity, const Eigen::Vector3d& torqueReference) {
+    return clippedHydrostatics(mesh, pose, water, time, fluidDensity, gravity, torqueReference, nullptr);
+}
+
+HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
+                                       const btWaterSurface& water, double time, double fluidDensity,
+                                       double gravity, const Eigen::Vector3d& torqueReference,
+                                       const WaterPatch* patch) {
     if (!std::isfinite(fluidDensity) || fluidDensity < 0)
         throw std::invalid_argument("clippedHydrostatics: fluid density must be finite and ≥ 0, got " +
                                     std::to_string(fluidDensity));
@@ -113,6 +121,8 @@ HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Is
     double flatH = 0;
     if (water.isFlat(time, flatH))
         std::fill(s.f.begin(), s.f.begin() + nv, flatH);
+    else if (patch)
+        patch->heights(s.x.data(), s.z.data(), nv, s.f.data());  // interpolated (DESIGN-NOTES 2.5)
     else
         water.heights(s.x.data(), s.z.data(), nv, time, s.f.data());  // heights at the corners, one batch
     for (std::size_t i = 0; i < nv; ++i)

@@ -14,6 +14,8 @@ struct btWaterQueryCache;
 
 namespace buoyancy {
 
+class WaterPatch;
+
 /// Result of one hydrostatic evaluation, world frame.
 struct HydrostaticsResult {
     double submerged_volume = 0;                          ///< m³
@@ -48,10 +50,12 @@ HydrostaticsResult integrateWettedSamples(const SampleWorkspace& ws, double flui
 
 /// Convenience: transform, query the surface once (batch), integrate.
 /// @param cache  optional per-body warm-start memory for the height query (btWaterSurface::heightsCached)
+/// @param patch  optional: heights interpolated from this per-body grid instead of queried (DESIGN-NOTES 2.5)
 HydrostaticsResult sampledHydrostatics(const SurfaceSamples& samples, const Eigen::Isometry3d& pose,
                                        const btWaterSurface& water, double time, double fluidDensity,
                                        double gravity, const Eigen::Vector3d& torqueReference,
-                                       SampleWorkspace& ws, btWaterQueryCache* cache = nullptr);
+                                       SampleWorkspace& ws, btWaterQueryCache* cache = nullptr,
+                                       const WaterPatch* patch = nullptr);
 
 /// Exact-mesh method: clip every triangle of the posed mesh against the water (exact for flat water;
 /// on waves each triangle is cut against the plane through its corners' water heights), and integrate
@@ -59,5 +63,13 @@ HydrostaticsResult sampledHydrostatics(const SurfaceSamples& samples, const Eige
 HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
                                        const btWaterSurface& water, double time, double fluidDensity,
                                        double gravity, const Eigen::Vector3d& torqueReference);
+
+/// clippedHydrostatics with the corner heights interpolated from `patch` (built over this body at `time`)
+/// instead of queried one by one, when the surface is not flat (DESIGN-NOTES 2.5: fewer wave queries).
+/// `patch` null: same as the overload above.
+HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
+                                       const btWaterSurface& water, double time, double fluidDensity,
+                                       double gravity, const Eigen::Vector3d& torqueReference,
+                                       const WaterPatch* patch);
 
 }  // namespace buoyancy

@@ -5,6 +5,8 @@
 
 #include "integrals/CompensatedSum.h"
 #include "integrals/Hydrostatics.h"
+#include "integrals/WaterPatch.h"
+#include "integrals/SampleFormulas.h"
 #include "water/btWaterSurface.h"
 
 #include <algorithm>
@@ -26,18 +28,21 @@ void transformSamples(const SurfaceSamples& samples, const Eigen::Isometry3d& po
         samples.az.size() != n)
         throw std::invalid_argument("transformSamples: sample arrays have different lengths");
     ws.resize(n);
-    const Eigen::Matrix3d R = pose.linear();
-    const Eigen::Vector3d t = pose.translation();
-    // p_w = R p + t, A_w = R A (area vectors are normals × area: rotate only).
+    // p_w = R p + t, A_w = R A (area vectors are normals × area: rotate only): SampleFormulas.h, shared with
+    // the OpenCL kernels (issue 7).
+    const Eigen::Matrix3d Rm = pose.linear();
+    const double R[9] = {Rm(0, 0), Rm(0, 1), Rm(0, 2), Rm(1, 0), Rm(1, 1), Rm(1, 2), Rm(2, 0), Rm(2, 1), Rm(2, 2)};
+    const double t[3] = {pose.translation().x(), pose.translation().y(), pose.translation().z()};
     for (std::size_t i = 0; i < n; ++i) {
-        const double x = samples.px[i], y = samples.py[i], z = samples.pz[i];
-        ws.wx[i] = R(0, 0) * x + R(0, 1) * y + R(0, 2) * z + t.x();
-        ws.wy[i] = R(1, 0) * x + R(1, 1) * y + R(1, 2) * z + t.y();
-        ws.wz[i] = R(2, 0) * x + R(2, 1) * y + R(2, 2) * z + t.z();
-        const double ax = samples.ax[i], ay = samples.ay[i], az = samples.az[i];
-        ws.wax[i] = R(0, 0) * ax + R(0, 1) * ay + R(0, 2) * az;
-        ws.way[i] = R(1, 0) * ax + R(1, 1) * ay + R(1, 2) * az;
-        ws.waz[i] = R(2, 0) * ax + R(2, 1) * ay + R(2, 2) * az;
+        double p[3], A[3];
+        formulas::bb_transform_sample(R, t, samples.px[i], samples.py[i], samples.pz[i], samples.ax[i],
+                                      samples.ay[i], samples.az[i], p, A);
+        ws.wx[i] = p[0];
+        ws.wy[i] = p[1];
+        ws.wz[i] = p[2];
+        ws.wax[i] = A[0];
+        ws.way[i] = A[1];
+        ws.waz[i] = A[2];
     }
     if (samples.area.size() == n)
         std::copy(samples.area.begin(), samples.area.end(), ws.warea.begin());
@@ -67,24 +72,11 @@ HydrostaticsResult integrateWettedSamples(const SampleWorkspace& ws, double flui
         const std::size_t e = std::min(n, b + detail::kSumBlock);
         double part[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
         for (std::size_t i = b; i < e; ++i) {
+            // The per-sample terms live in SampleFormulas.h, shared with the OpenCL kernels (issue 7).
             const double f = ws.waterHeight[i];
-            const double d = std::min(ws.wy[i] - f, 0.0);
-            const double wet = d < 0 ? 1.0 : 0.0;
-            const double x = ws.wx[i] - rx, y = ws.wy[i] - ry, z = ws.wz[i] - rz, fr = f - ry;
-            const double Ax = ws.wax[i], Ay = ws.way[i], Az = ws.waz[i];
-            const double Ayd = Ay * d;
-            part[0] += Ayd;
-            part[1] += Ayd * x;
-            part[2] += Ayd * 0.5 * (y + fr);
-            part[3] += Ayd * z;
-            part[4] += d * Ax;
-            part[5] += Ayd;
-            part[6] += d * Az;
-            part[7] += d * (y * Az - z * Ay);
-            part[8] += d * (z * Ax - x * Az);
-            part[9] += d * (x * Ay - y * Ax);
-            part[10] += wet * Ay;
-            part[11] += wet * (haveArea ? ws.warea[i] : std::sqrt(Ax * Ax + Ay * Ay + Az * Az));
+            formulas::bb_hydro_accumulate(ws.wx[i] - rx, ws.wy[i] - ry, ws.wz[i] - rz, f - ry,
+                                          formulas::bb_wet_depth(ws.wy[i], f), ws.wax[i], ws.way[i], ws.waz[i],
+                                          haveArea ? ws.warea[i] : -1.0, part);
         }
         acc.add(part);
     }
@@ -104,7 +96,7 @@ HydrostaticsResult integrateWettedSamples(const SampleWorkspace& ws, double flui
 HydrostaticsResult sampledHydrostatics(const SurfaceSamples& samples, const Eigen::Isometry3d& pose,
                                        const btWaterSurface& water, double time, double fluidDensity,
                                        double gravity, const Eigen::Vector3d& torqueReference,
-                                       SampleWorkspace& ws, btWaterQueryCache* cache) {
+                                       SampleWorkspace& ws, btWaterQueryCache* cache, const WaterPatch* patch) {
     if (!std::isfinite(fluidDensity) || fluidDensity < 0)
         throw std::invalid_argument("sampledHydrostatics: fluid density must be finite and ≥ 0, got " +
                                     std::to_string(fluidDensity));
@@ -128,7 +120,10 @@ HydrostaticsResult sampledHydrostatics(const SurfaceSamples& samples, const Eige
     water.heightBounds(lo[0], lo[2], hi[0], hi[2], time, hMin, hMax);
     if (lo[1] >= hMax) return HydrostaticsResult{};
 
-    if (cache)  // one batch call per body
+    double flatH = 0;
+    if (patch && !water.isFlat(time, flatH))  // interpolated from the body's grid (DESIGN-NOTES 2.5)
+        patch->heights(ws.wx.data(), ws.wz.data(), n, ws.waterHeight.data());
+    else if (cache)  // one batch call per body
         water.heightsCached(ws.wx.data(), ws.wz.data(), n, time, ws.waterHeight.data(), *cache);
     else
         water.heights(ws.wx.data(), ws.wz.data(), n, time, ws.waterHeight.data());

@@ -17,10 +17,13 @@
 ///   orientation; nesting is decided by the generalized winding number (solid-angle sum, Van Oosterom &
 ///   Strackee 1983) of a point of the inner component's surface. An inward component inside nothing is
 ///   flipped with a warning; inward inside outward is a cavity and kept; components that intersect
-///   each other (triangle–triangle test with a hash-grid prefilter) get a warning.
+///   each other (triangle–triangle test with a bounding-volume hierarchy, ComponentIntersections.h) get a
+///   warning.
 
 #include "mesh/MeshRepair.h"
 
+#include "mesh/BoxTree.h"
+#include "mesh/ComponentIntersections.h"
 #include "mesh/MeshImport.h"
 
 #include <Eigen/Geometry>
@@ -74,37 +77,6 @@ struct Component {
     bool flipped = false;
 };
 
-/// orient3d: six times the signed volume of tetrahedron (a, b, c, d), with a relative "zero" band.
-int orientSign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-               const Eigen::Vector3d& d) {
-    const Eigen::Vector3d u = b - a, v = c - a, w = d - a;
-    const double det = u.cross(v).dot(w);
-    const double scale = u.norm() * v.norm() * w.norm();
-    if (std::abs(det) <= 1e-12 * scale) return 0;
-    return det > 0 ? 1 : -1;
-}
-
-/// True when segment pq crosses the interior of triangle abc (touching does not count).
-bool segmentCrossesTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
-                            const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-    const int sp = orientSign(a, b, c, p), sq = orientSign(a, b, c, q);
-    if (sp == 0 || sq == 0 || sp == sq) return false;
-    // The line pq meets the closed triangle (edges included: symmetric overlaps often cross exactly on a
-    // diagonal); the strict plane test above already excludes mere touching by an endpoint.
-    const int s1 = orientSign(p, q, a, b), s2 = orientSign(p, q, b, c), s3 = orientSign(p, q, c, a);
-    const bool allNonNeg = s1 >= 0 && s2 >= 0 && s3 >= 0, allNonPos = s1 <= 0 && s2 <= 0 && s3 <= 0;
-    return (allNonNeg || allNonPos) && (s1 != 0 || s2 != 0 || s3 != 0);
-}
-
-/// Proper (non-touching, non-coplanar) intersection of two triangles: an edge of one crosses the other.
-bool trianglesIntersect(const Eigen::Vector3d* A, const Eigen::Vector3d* B) {
-    for (int e = 0; e < 3; ++e) {
-        if (segmentCrossesTriangle(A[e], A[(e + 1) % 3], B[0], B[1], B[2])) return true;
-        if (segmentCrossesTriangle(B[e], B[(e + 1) % 3], A[0], A[1], A[2])) return true;
-    }
-    return false;
-}
-
 /// Generalized winding number of a closed triangle set about point x (solid angles, Van Oosterom &
 /// Strackee 1983): ±1 inside (sign = orientation), 0 outside.
 double windingNumber(const TriangleMesh& m, const std::vector<int>& tris, const Eigen::Vector3d& x) {
@@ -117,68 +89,6 @@ double windingNumber(const TriangleMesh& m, const std::vector<int>& tris, const 
         sum += 2.0 * std::atan2(num, den);
     }
     return sum / (4.0 * kPi);
-}
-
-/// Does any triangle of component ci properly intersect one of component cj? Hash-grid prefilter over
-/// the overlap of the two bounding boxes.
-bool componentsIntersect(const TriangleMesh& m, const Component& ci, const Component& cj) {
-    Eigen::AlignedBox3d region = ci.box.intersection(cj.box);
-    if (region.isEmpty()) return false;
-    const double pad = 1e-9 * (ci.box.diagonal().norm() + cj.box.diagonal().norm());
-    region.extend(region.min() - Eigen::Vector3d::Constant(pad));
-    region.extend(region.max() + Eigen::Vector3d::Constant(pad));
-
-    auto triBox = [&](int t) {
-        Eigen::AlignedBox3d b(m.corner(t, 0));
-        b.extend(m.corner(t, 1));
-        b.extend(m.corner(t, 2));
-        return b;
-    };
-    std::vector<int> ti, tj;
-    std::vector<double> extents;
-    for (int t : ci.tris) if (triBox(t).intersects(region)) { ti.push_back(t); extents.push_back(triBox(t).diagonal().maxCoeff()); }
-    for (int t : cj.tris) if (triBox(t).intersects(region)) { tj.push_back(t); extents.push_back(triBox(t).diagonal().maxCoeff()); }
-    if (ti.empty() || tj.empty()) return false;
-    std::nth_element(extents.begin(), extents.begin() + extents.size() / 2, extents.end());
-    const double regionExtent = region.diagonal().maxCoeff();
-    const double cell = std::max({extents[extents.size() / 2], regionExtent / 64.0, 1e-300});
-
-    auto cellRange = [&](const Eigen::AlignedBox3d& b, Eigen::Array3i& lo, Eigen::Array3i& hi) {
-        const Eigen::Array3d l = ((b.min() - region.min()) / cell).array().floor().max(0.0).min(1e6);
-        const Eigen::Array3d h = ((b.max() - region.min()) / cell).array().floor().max(0.0).min(1e6);
-        lo = l.cast<int>();
-        hi = h.cast<int>();
-    };
-    std::unordered_multimap<std::uint64_t, int> grid;
-    for (int t : tj) {
-        Eigen::Array3i lo, hi;
-        cellRange(triBox(t), lo, hi);
-        for (int x = lo.x(); x <= hi.x(); ++x)
-            for (int y = lo.y(); y <= hi.y(); ++y)
-                for (int z = lo.z(); z <= hi.z(); ++z) grid.emplace(cellHash(x, y, z), t);
-    }
-    std::unordered_map<int, int> tested;  // j-triangle -> last i-triangle tested against it
-    for (int t : ti) {
-        const Eigen::Vector3d A[3] = {m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)};
-        const Eigen::AlignedBox3d bt = triBox(t);
-        Eigen::Array3i lo, hi;
-        cellRange(bt, lo, hi);
-        for (int x = lo.x(); x <= hi.x(); ++x)
-            for (int y = lo.y(); y <= hi.y(); ++y)
-                for (int z = lo.z(); z <= hi.z(); ++z) {
-                    auto range = grid.equal_range(cellHash(x, y, z));
-                    for (auto it = range.first; it != range.second; ++it) {
-                        const int u = it->second;
-                        auto seen = tested.find(u);
-                        if (seen != tested.end() && seen->second == t) continue;
-                        tested[u] = t;
-                        if (!bt.intersects(triBox(u))) continue;
-                        const Eigen::Vector3d B[3] = {m.corner(u, 0), m.corner(u, 1), m.corner(u, 2)};
-                        if (trianglesIntersect(A, B)) return true;
-                    }
-                }
-    }
-    return false;
 }
 
 /// "1 edge" / "3 edges".
@@ -385,15 +295,35 @@ MeshReport prepareMesh(TriangleMesh& mesh, const std::string& sourceName) {
 
     // --- nesting: which components enclose which (winding number of a point on the inner surface) ---
     const std::size_t nc = comps.size();
+    // Candidates from a tree of component boxes: near-linear in the component count (issue 10).
     std::vector<std::vector<int>> enclosedBy(nc);
-    for (std::size_t j = 0; j < nc && nc > 1; ++j) {
-        const int t0 = comps[j].tris.front();
-        const Eigen::Vector3d probe = (mesh.corner(t0, 0) + mesh.corner(t0, 1) + mesh.corner(t0, 2)) / 3.0;
-        for (std::size_t i = 0; i < nc; ++i) {
-            if (i == j || !comps[i].box.contains(probe)) continue;
-            if (std::abs(windingNumber(mesh, comps[i].tris, probe)) > 0.5) enclosedBy[j].push_back(static_cast<int>(i));
+    std::vector<std::pair<int, int>> mutual;
+    if (nc > 1) {
+        std::vector<Eigen::AlignedBox3d> compBoxes(nc);
+        for (std::size_t c = 0; c < nc; ++c) compBoxes[c] = comps[c].box;
+        const BoxTree tree(std::move(compBoxes));
+        std::vector<int> stack;
+        for (std::size_t j = 0; j < nc; ++j) {
+            const int t0 = comps[j].tris.front();
+            const Eigen::Vector3d probe = (mesh.corner(t0, 0) + mesh.corner(t0, 1) + mesh.corner(t0, 2)) / 3.0;
+            tree.query(Eigen::AlignedBox3d(probe, probe), stack, [&](int i) {
+                if (std::size_t(i) != j && std::abs(windingNumber(mesh, comps[std::size_t(i)].tris, probe)) > 0.5)
+                    enclosedBy[j].push_back(i);
+            });
+            std::sort(enclosedBy[j].begin(), enclosedBy[j].end());  // the order of the old loop over i
         }
-        comps[j].depth = static_cast<int>(enclosedBy[j].size());
+        // Surfaces that cross each other can each hold the other's probe point: such a pair is not nested
+        // (found by fuzzing, issue 10: the parent walk below looped forever on A in B in A). Drop both links;
+        // the intersection warning reports the pair.
+        for (std::size_t j = 0; j < nc; ++j)
+            for (int i : enclosedBy[j])
+                if (std::binary_search(enclosedBy[std::size_t(i)].begin(), enclosedBy[std::size_t(i)].end(), int(j)))
+                    mutual.push_back({int(j), i});
+        for (const auto& [a, b] : mutual) {
+            auto& v = enclosedBy[std::size_t(a)];
+            v.erase(std::remove(v.begin(), v.end(), b), v.end());
+        }
+        for (std::size_t j = 0; j < nc; ++j) comps[j].depth = static_cast<int>(enclosedBy[j].size());
     }
     for (std::size_t j = 0; j < nc; ++j) {
         int best = -1;
@@ -408,8 +338,10 @@ MeshReport prepareMesh(TriangleMesh& mesh, const std::string& sourceName) {
     std::vector<char> rootFlipped(nc, 0);
     for (int c : order) {
         Component& comp = comps[c];
+        // Longer cycles (A in B in C in A) can still come from crossing surfaces: stop after nc steps.
         int root = c;
-        while (comps[root].parent >= 0) root = comps[root].parent;
+        for (std::size_t steps = 0; comps[root].parent >= 0 && steps < nc; ++steps) root = comps[root].parent;
+        if (comps[root].parent >= 0) root = c;
         if (comp.parent < 0) {
             if (comp.volume < 0) {
                 comp.flipped = true;
@@ -453,15 +385,16 @@ MeshReport prepareMesh(TriangleMesh& mesh, const std::string& sourceName) {
                        " m^3 (a cavity larger than its body, or a surface crossing itself)");
     }
 
-    // --- components that intersect each other ---
+    // --- components that intersect each other (one BVH pass over all triangles) ---
     std::size_t intersecting = 0;
     std::string pairs;
-    for (std::size_t i = 0; i < nc; ++i)
-        for (std::size_t j = i + 1; j < nc; ++j) {
-            if (!comps[i].box.intersects(comps[j].box)) continue;
-            if (!componentsIntersect(mesh, comps[i], comps[j])) continue;
+    if (nc > 1) {
+        std::vector<int> triangleComponent(nt);
+        for (std::size_t c = 0; c < nc; ++c)
+            for (int t : comps[c].tris) triangleComponent[std::size_t(t)] = static_cast<int>(c);
+        for (const auto& [i, j] : intersectingComponentPairs(mesh, triangleComponent))
             if (++intersecting <= 5) pairs += (pairs.empty() ? "" : ", ") + std::to_string(i + 1) + "&" + std::to_string(j + 1);
-        }
+    }
     if (intersecting > 0)
         report.warnings.push_back({sourceName + ": " + std::to_string(intersecting) +
                                    (intersecting == 1 ? " pair" : " pairs") +

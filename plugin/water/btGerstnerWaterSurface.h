@@ -75,6 +75,13 @@ public:
     double meanLevel() const { return m_height; }
     /// Σ A_i, m.
     double amplitudeSum() const { return m_amplitudeSum; }
+    /// [issue 7] The per-wave constants the queries use, for device backends (btOpenClBuoyancyBackend): 7 values
+    /// per wave: A (m), k (1/m), ω (1/s), d_x, d_z (unit direction), Q·A (m), φ (rad).
+    std::vector<double> packedWaveConstants() const {
+        std::vector<double> out;
+        for (const Wave& w : m_waves) out.insert(out.end(), {w.a, w.k, w.omega, w.dx, w.dz, w.qa, w.phase});
+        return out;
+    }
 
 private:
     /// Per-wave constants, precomputed once (θ = kdx·x₀ + kdz·z₀ + (φ − ω t)).

@@ -45,6 +45,14 @@ public:
     int sizeZ() const { return m_nz; }
     double spacing() const { return m_spacing; }
     const std::vector<double>& heightSamples() const { return m_h; }
+    /// [issue 7] World position of sample (0, 0), m, and the wrap mode, for device backends.
+    double originX() const { return m_originX; }
+    double originZ() const { return m_originZ; }
+    bool isPeriodic() const { return m_periodic; }
+    /// [issue 7] Water-velocity samples (empty: still water), m/s, same layout as heightSamples().
+    const std::vector<double>& velocitySamplesX() const { return m_vx; }
+    const std::vector<double>& velocitySamplesY() const { return m_vy; }
+    const std::vector<double>& velocitySamplesZ() const { return m_vz; }
 
 private:
     /// Bilinear lookup of `field` at (x, z).

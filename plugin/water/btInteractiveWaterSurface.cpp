@@ -28,6 +28,7 @@ void btInteractiveWaterSurface::reset() {
     m_eta.assign(n, m_h);
     m_vel.assign(n, 0.0);
     m_lap.assign(n, 0.0);
+    m_offset = 0.0;
     m_min = m_max = m_h;
 }
 
@@ -40,7 +41,7 @@ void btInteractiveWaterSurface::heights(const double* x, const double* z, std::s
         const double a = u - i0, b = v - j0;
         const double* r0 = &m_eta[std::size_t(j0) * m_nx + i0];
         const double* r1 = r0 + m_nx;
-        outHeight[k] = (1 - b) * ((1 - a) * r0[0] + a * r0[1]) + b * ((1 - a) * r1[0] + a * r1[1]);
+        outHeight[k] = (1 - b) * ((1 - a) * r0[0] + a * r0[1]) + b * ((1 - a) * r1[0] + a * r1[1]) + m_offset;
     }
 }
 
@@ -63,8 +64,8 @@ void btInteractiveWaterSurface::heightBounds(double, double, double, double, dou
 
 void btInteractiveWaterSurface::updateRange() {
     const auto mm = std::minmax_element(m_eta.begin(), m_eta.end());
-    m_min = *mm.first;
-    m_max = *mm.second;
+    m_min = *mm.first + m_offset;
+    m_max = *mm.second + m_offset;
 }
 
 void btInteractiveWaterSurface::addVolumeChange(double x, double z, double dV, double radius) {
@@ -72,28 +73,37 @@ void btInteractiveWaterSurface::addVolumeChange(double x, double z, double dV, d
     const int ci = int(std::floor((x - m_minX) / m_dx)), cj = int(std::floor((z - m_minZ) / m_dx));
     if (ci < 0 || cj < 0 || ci >= m_nx || cj >= m_nz) return;
     const double r = std::isfinite(radius) ? std::max(radius, 0.0) : 0.0;
-    const double rOut = r + 2 * m_dx;
+    // Where the displaced water goes: up in a ring past a gap of two cells outside the footprint (radius r),
+    // a band max(2 dx, r/2) wide; down uniformly over the whole grid (the open sea around it, an O(1) offset).
+    // Nothing is taken from under the body, and nothing it reads is raised: every point it reads lies within
+    // r, whose bilinear stencil reaches √2 dx further, short of the ring. (Taking the water from the cells
+    // under the body made it read its own displacement twice and pumped a half-immersed sphere into a
+    // growing heave at coarse grids; a ring adjacent to the footprint sat inside that stencil, and since its
+    // height grows as 1/dx — the same volume in a thinner band — it lifted bodies at fine grids: 0.3 m at
+    // 512², a creep at 256².) The band's width in metres keeps the pushed-up water resolution-independent.
+    const double rIn = r + 2 * m_dx;
+    const double rOut = rIn + std::max(2 * m_dx, 0.5 * r);
     const int span = int(std::ceil(rOut / m_dx)) + 1;
-    m_foot.clear();
     m_ring.clear();
     for (int j = std::max(0, cj - span); j <= std::min(m_nz - 1, cj + span); ++j)
         for (int i = std::max(0, ci - span); i <= std::min(m_nx - 1, ci + span); ++i) {
             const double d = std::hypot(m_minX + (i + 0.5) * m_dx - x, m_minZ + (j + 0.5) * m_dx - z);
-            const int id = j * m_nx + i;
-            if ((i == ci && j == cj) || d <= r) m_foot.push_back(id);
-            else if (d <= rOut) m_ring.push_back(id);
+            if (d > rIn && d <= rOut) m_ring.push_back(j * m_nx + i);
         }
+    if (m_ring.empty()) return;  // the ring lies outside the grid: the body covers it, nothing to move
     const double area = m_dx * m_dx;
-    const double down = dV / (area * double(m_foot.size()));
-    for (int id : m_foot) m_eta[std::size_t(id)] -= down;
-    if (m_ring.empty()) {  // the footprint covers the grid: spread over every cell
-        const double up = dV / (area * double(m_eta.size()));
-        for (double& e : m_eta) e += up;
-    } else {
-        const double up = dV / (area * double(m_ring.size()));
-        for (int id : m_ring) m_eta[std::size_t(id)] += up;
+    const double sink = dV / (area * double(m_eta.size()));
+    m_offset -= sink;
+    m_min -= sink;
+    m_max -= sink;
+    const double up = dV / (area * double(m_ring.size()));
+    for (int id : m_ring) {
+        double& e = m_eta[std::size_t(id)];
+        e += up;
+        // The range stays a bound (exact again after the next step).
+        m_min = std::min(m_min, e + m_offset);
+        m_max = std::max(m_max, e + m_offset);
     }
-    updateRange();
 }
 
 void btInteractiveWaterSurface::step(double dt) {
@@ -132,5 +142,5 @@ double btInteractiveWaterSurface::waterVolume() const {
         c = (t - s) - y;
         s = t;
     }
-    return s * m_dx * m_dx;
+    return (s + m_offset * double(m_eta.size())) * m_dx * m_dx;
 }

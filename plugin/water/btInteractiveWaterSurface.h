@@ -7,8 +7,8 @@
 /// conserved exactly by every step.
 ///
 /// Coupling (the seam): when a body's displaced volume grows by dV at (x, z), the water it pushes away
-/// leaves the cells under it (η drops there by dV over their area) and is put in a ring of cells just
-/// outside its footprint; the wave equation carries it away as rings. btInteractiveWaterCoupler feeds
+/// is put in a ring of cells outside its footprint (past a two-cell gap) and taken uniformly from the whole
+/// grid (the sea around it); the wave equation carries the ring away. btInteractiveWaterCoupler feeds
 /// this from every btBuoyancyAction's last result once per substep and steps the grid. The water volume
 /// V_w = Σ_cells (η − h)·A_cell is therefore conserved at every step: the water a body displaces is not
 /// created or lost, only moved (the level far away is unchanged, as in an open sea).
@@ -41,8 +41,9 @@ public:
     bool isTimeVarying() const override { return true; }
 
     /// A body's displaced volume changed by dV (m³, may be negative) at (x, z) over a footprint of radius
-    /// `radius` (m; at least the cell holding (x, z)): η drops by dV in the footprint cells and rises by dV in
-    /// the ring of cells within two cells outside it. Points outside the grid are ignored.
+    /// `radius` (m): η rises by dV in a ring that starts two cells outside the footprint (out of the bilinear
+    /// reach of anything within `radius`) and is max(2 cells, radius/2) wide, and drops by dV uniformly over
+    /// the grid (a level offset, O(ring) work). Σ (η − h) is unchanged. Points outside the grid are ignored.
     void addVolumeChange(double x, double z, double dV, double radius);
     /// Advance the wave equation by dt (s, ≥ 0), in internal steps with c·dt/dx ≤ 0.5 (stable).
     void step(double dt);
@@ -54,7 +55,7 @@ public:
     /// Cell side, m.
     double cellSize() const { return m_dx; }
     /// Elevation of cell (i, j) (centre at minX + (i+½)dx, minZ + (j+½)dx), m.
-    double cellHeight(int i, int j) const { return m_eta[std::size_t(j) * m_nx + i]; }
+    double cellHeight(int i, int j) const { return m_eta[std::size_t(j) * m_nx + i] + m_offset; }
     /// Set every cell to level h and at rest.
     void reset();
 
@@ -64,6 +65,7 @@ private:
     int m_nx, m_nz;
     double m_dx, m_minX, m_minZ, m_c, m_gamma, m_h;
     std::vector<double> m_eta, m_vel, m_lap;
-    std::vector<int> m_foot, m_ring;  // scratch of addVolumeChange
+    std::vector<int> m_ring;  // scratch of addVolumeChange
     double m_min, m_max;
+    double m_offset = 0;      // uniform level change of every cell (the sink of addVolumeChange), m
 };

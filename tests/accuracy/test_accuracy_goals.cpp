@@ -2,6 +2,8 @@
 // oracle of tests/oracles on analytic shapes made by the library and on real models nobody here wrote
 // (Debian's assimp-testmodels).
 #include "AccuracyHarness.h"
+#include "bullet/btBuoyancySettings.h"
+#include "oracles/OracleMeshes.h"
 
 #include "mesh/MeshImport.h"
 #include "mesh/MeshRepair.h"
@@ -9,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -115,4 +118,75 @@ TEST_CASE("accuracy: the paper's texel-centre method at 256, 512, 1024 (report)"
             buoyancy_test::recordAccuracyRow(m.name, m.mesh.triangleCount(), "paper", r);
             CHECK(r.dry_volume_pct < 100);  // sanity only: this test reports, the goals are for the methods above
         }
+}
+
+// ---- Automatic level of detail (issue 9; btBuoyancySettings::errorBudget, integrals/LevelOfDetail.h) ---------
+// The model's errors come from docs/benchmarks; here the picked configuration is measured against the oracle.
+TEST_CASE("automatic level of detail: the picked configuration meets its budget on analytic shapes; tighter never "
+          "picks cheaper-but-worse",
+          "[accuracy][lod]") {
+    const std::vector<std::pair<std::string, buoyancy::TriangleMesh>> shapes = {
+        {"sphere", buoyancy_test::toTriangleMesh(buoyancy_test::oracleSphere(0.5, 64, 32))},
+        {"torus", buoyancy_test::toTriangleMesh(buoyancy_test::oracleTorus(0.6, 0.2, 64, 32))},
+        {"box", buoyancy_test::toTriangleMesh(buoyancy_test::oracleBox(2.0, 0.6, 1.0))}};
+    const std::vector<double> budgets = {1.0, 0.3, 0.1, 0.03};  // loosest first
+    for (const auto& [name, mesh] : shapes) {
+        // A texture method must be picked to test anything: as for a mesh too big to clip (10⁶ triangles).
+        btBuoyancySettings st;
+        double prevCost = -1, prevMeasured = 1e300;
+        int prevN = 0;
+        for (double b : budgets) {
+            st.errorBudget = b;
+            const btBuoyancyLevelOfDetail pick = btBuoyancyPickLevelOfDetail(st, 1000000);
+            REQUIRE(pick.method == btBuoyancyMethod::ExactCoverage);
+            REQUIRE(pick.withinBudget);
+            const buoyancy_test::AccuracyReport r =
+                buoyancy_test::measureAccuracy(mesh, buoyancy::BuoyancyMethod::ExactCoverage, pick.textureSize, 5);
+            INFO(name << ": budget " << b << " % -> " << pick.description << "; measured " << buoyancy_test::describe(r));
+            CHECK(r.sub_volume_pct <= b);
+            // Tighter budget: never a cheaper configuration that is worse (here: N never shrinks, and the measured
+            // worst error never grows by more than rounding).
+            CHECK(pick.textureSize >= prevN);
+            if (pick.textureSize == prevN) CHECK(r.sub_volume_pct <= prevMeasured * (1 + 1e-9));
+            else CHECK(r.sub_volume_pct <= prevMeasured);
+            prevN = pick.textureSize;
+            prevMeasured = r.sub_volume_pct;
+            (void)prevCost;
+        }
+        // On the real (small) mesh Auto may pick exact-mesh; whatever it picks, the measured error is within budget.
+        st.errorBudget = 0.1;
+        const btBuoyancyLevelOfDetail own = btBuoyancyPickLevelOfDetail(st, mesh.triangleCount());
+        const buoyancy_test::AccuracyReport r = buoyancy_test::measureAccuracy(
+            mesh, own.method == btBuoyancyMethod::ExactMesh ? buoyancy::BuoyancyMethod::ExactMesh : buoyancy::BuoyancyMethod::ExactCoverage,
+            own.textureSize, 5);
+        INFO(name << " (" << mesh.triangleCount() << " triangles): " << own.description);
+        CHECK(r.sub_volume_pct <= 0.1);
+    }
+}
+
+TEST_CASE("automatic level of detail: the model's picks are ordered and explained", "[accuracy][lod]") {
+    btBuoyancySettings st;
+    CHECK(btBuoyancyPickLevelOfDetail(st, 1000).description.find("no error budget") != std::string::npos);
+    double prevError = 1e300, prevCost = -1;
+    for (double b : {5.0, 1.0, 0.3, 0.1, 0.03, 0.01, 0.003, 0.001, 1e-6}) {
+        st.errorBudget = b;
+        for (std::size_t tris : {std::size_t(800), std::size_t(20000), std::size_t(2000000)}) {
+            const btBuoyancyLevelOfDetail p = btBuoyancyPickLevelOfDetail(st, tris);
+            INFO("budget " << b << ", " << tris << " triangles: " << p.description);
+            CHECK(p.withinBudget);
+            CHECK(p.modelVolumeErrorPct <= b);
+            CHECK(!p.description.empty());
+        }
+        // For one mesh size: tighter budget → model error never larger, model cost never smaller.
+        const btBuoyancyLevelOfDetail p = btBuoyancyPickLevelOfDetail(st, 2000000);
+        const double cost = p.method == btBuoyancyMethod::ExactMesh ? 2e6 : double(p.textureSize) * p.textureSize;
+        CHECK(p.modelVolumeErrorPct <= prevError);
+        CHECK(cost >= prevCost);
+        prevError = p.modelVolumeErrorPct;
+        prevCost = cost;
+    }
+    st.errorBudget = -1;
+    CHECK_THROWS_AS(btBuoyancyPickLevelOfDetail(st, 100), std::invalid_argument);
+    st.errorBudget = std::nan("");
+    CHECK_THROWS_AS(btBuoyancyPickLevelOfDetail(st, 100), std::invalid_argument);
 }

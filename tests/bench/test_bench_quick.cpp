@@ -81,7 +81,9 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
             CHECK(num(r, cn) > 0);
             CHECK(num(r, cs) > 0);
             const int tex = int(num(r, ct));
-            if (r[cm] == "texel-centre" || r[cm] == "exact-coverage") CHECK(tex >= 32);
+            if (r[cm] == "texel-centre" || r[cm] == "exact-coverage" || r[cm] == "sub-texel") CHECK(tex >= 32);
+            // Automatic level of detail: the variant names the budget and the configuration it picked.
+            if (r[cm] == "lod") CHECK(r[column(t, "variant")].rfind("budget-", 0) == 0);
             if (r[cm] == "exact-mesh" || r[cm] == "probes" || r[cm] == "downward-faces") CHECK(tex == 0);
             // Exact clipping of the same mesh the oracle clips: only rounding is left.
             if (r[cm] == "exact-mesh") {
@@ -95,7 +97,8 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
             CHECK(num(r, cv) < 100);
             CHECK(num(r, cc) < 100);
         }
-        for (const char* m : {"default", "texel-centre", "exact-coverage", "exact-mesh", "probes", "downward-faces"})
+        for (const char* m : {"default", "texel-centre", "exact-coverage", "exact-mesh", "sub-texel", "lod", "probes",
+                              "downward-faces"})
             CHECK(methods.count(m) == 1);
         CHECK(shapes.count("box") == 1);
         CHECK(shapes.count("sphere") == 1);
@@ -132,6 +135,24 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
             CHECK(num(t[i], cn) > 0);
         }
         CHECK(bodies == std::set<int>{1, 10, 100});
+    }
+    {  // waves_lod.csv / drag_lod.csv: the level of detail (DESIGN-NOTES 2.5) adds little error
+        const Table w = readCsv(o.out + "/waves_lod.csv");
+        const int cn = column(w, "nodes"), cv = column(w, "volume_error_pct");
+        int patched = 0;
+        for (std::size_t i = 1; i < w.size(); ++i)
+            if (num(w[i], cn) > 0) {
+                ++patched;
+                // An 8×8 patch over a ≤ 4.3 m body in 10–60 m waves: the bicubic error is millimetres.
+                CHECK(num(w[i], cv) < 0.5);
+            }
+        CHECK(patched > 0);
+        const Table d = readCsv(o.out + "/drag_lod.csv");
+        const int ck = column(d, "clusters_max"), cf = column(d, "drag_force_error_pct");
+        for (std::size_t i = 1; i < d.size(); ++i) {
+            if (num(d[i], ck) == 0) CHECK(num(d[i], cf) == 0);  // the fine sum against itself
+            CHECK(std::isfinite(num(d[i], cf)));
+        }
     }
     CHECK(std::filesystem::exists(o.out + "/summary.md"));
     std::filesystem::remove_all(o.out);

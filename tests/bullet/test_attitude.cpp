@@ -1,6 +1,6 @@
 // Attitudes against metacentric theory (DESIGN-NOTES 5): the long square log (flat / corner-down ranges),
 // a ballasted ball that rights itself and a uniform ball that is neutral in roll (paper Fig. 14).
-#include "bullet/BulletTestWorld.h"
+#include "oracles/BulletTestWorld.h"
 #include "mesh/PrimitiveMeshes.h"
 #include "oracles/PolyhedralOracle.h"
 

@@ -1,6 +1,6 @@
 // Dynamics against physical laws (DESIGN-NOTES 5, 6): heave period, terminal velocity, energy,
 // neutral buoyancy, symmetry, and the in-place mass change.
-#include "bullet/BulletTestWorld.h"
+#include "oracles/BulletTestWorld.h"
 #include "mesh/PrimitiveMeshes.h"
 #include "oracles/PolyhedralOracle.h"
 

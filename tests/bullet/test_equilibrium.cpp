@@ -1,5 +1,5 @@
 // Equilibrium drafts and attitudes against the analytic / exact-polyhedral oracles (DESIGN-NOTES 5).
-#include "bullet/BulletTestWorld.h"
+#include "oracles/BulletTestWorld.h"
 #include "mesh/PrimitiveMeshes.h"
 #include "oracles/PolyhedralOracle.h"
 
@@ -12,25 +12,10 @@ using namespace buoyancy_test;
 
 namespace {
 
-/// Settle a body and return the mean of its mesh-frame pose over the last `avgSeconds` (the mean of a
-/// decaying oscillation is its equilibrium), and its final transform.
-struct Settled {
-    double meanY = 0;
-    btTransform last;
-};
-
-Settled settle(BulletTestWorld& w, std::size_t i, double seconds, double avgSeconds, int substeps = 4) {
-    const double dt = 1.0 / 240.0;
-    w.run(seconds - avgSeconds, substeps, dt);
-    const int frames = static_cast<int>(std::round(avgSeconds / (dt * substeps)));
-    Settled s;
-    for (int f = 0; f < frames; ++f) {
-        w.step(1, substeps, dt);
-        s.meanY += double(w.body(i).getMeshWorldTransform().getOrigin().y());
-    }
-    s.meanY /= frames;
-    s.last = w.body(i).getMeshWorldTransform();
-    return s;
+/// Settle body i for `seconds` and average its mesh-frame height over the last `avgSeconds` (the mean of a
+/// decaying oscillation is its equilibrium): Track::meanMeshY, and the final transform Track::last.
+Track settle(BulletTestWorld& w, std::size_t i, double seconds, double avgSeconds, int substeps = 4) {
+    return runTracked(w, seconds, substeps, 1.0 / 240.0, i, -1e300, -1e300, avgSeconds);
 }
 
 /// Error of the equilibrium: the oracle's water level for the settled pose (mesh displacing m/ρ_w at the
@@ -55,12 +40,12 @@ TEST_CASE("plank settles at the analytic draft d = s c", "[bullet][equilibrium][
         body.density = 1000.0 * s;
         // Released 5 cm above its analytic equilibrium.
         w.add(shape, body, makePose(btVector3(0, btScalar(c / 2 - s * c + 0.05), 0)), bs);
-        const Settled st = settle(w, 0, 10.0, 3.0);
+        const Track st = settle(w, 0, 10.0, 3.0);
         const double analyticY = c / 2 - s * c;  // box centre when the draft is s·c
         std::printf("plank %-14s s=%.2f  centre y %.6f  analytic %.6f  error %.3f%% of height  tilt %.3f deg\n",
-                    btBuoyancyMethodName(shape->getMethod()), s, st.meanY, analyticY,
-                    100 * std::abs(st.meanY - analyticY) / c, tiltDegrees(st.last));
-        CHECK(std::abs(st.meanY - analyticY) < 0.005 * c);
+                    btBuoyancyMethodName(shape->getMethod()), s, st.meanMeshY, analyticY,
+                    100 * std::abs(st.meanMeshY - analyticY) / c, tiltDegrees(st.last));
+        CHECK(std::abs(st.meanMeshY - analyticY) < 0.005 * c);
         CHECK(tiltDegrees(st.last) < 1.0);
     }
 }
@@ -77,9 +62,9 @@ TEST_CASE("sphere settles at the draft of its own mesh volume", "[bullet][equili
         btBuoyantBodySettings body;
         body.density = 1000.0 * s;
         w.add(shape, body, makePose(btVector3(0, btScalar(R - 2 * R * s + 0.05), 0)), bs);
-        const Settled st = settle(w, 0, 10.0, 3.0);
+        const Track st = settle(w, 0, 10.0, 3.0);
         const double mass = w.body(0).getMass();
-        const double err = drafError(mesh, st.last, st.meanY, mass);
+        const double err = drafError(mesh, st.last, st.meanMeshY, mass);
         // Analytic sphere of the same volume, for the report: cap volume π d²(3R − d)/3 = s V.
         const double Re = std::cbrt(3 * Vmesh / (4 * M_PI));
         double lo = 0, hi = 2 * Re;
@@ -89,9 +74,9 @@ TEST_CASE("sphere settles at the draft of its own mesh volume", "[bullet][equili
         }
         const double analyticY = Re - 0.5 * (lo + hi);
         std::printf("sphere %-14s s=%.2f  centre y %.6f  analytic(R_eq) %.6f  oracle level error %.3f%% of height\n",
-                    btBuoyancyMethodName(shape->getMethod()), s, st.meanY, analyticY, 100 * std::abs(err) / (2 * R));
+                    btBuoyancyMethodName(shape->getMethod()), s, st.meanMeshY, analyticY, 100 * std::abs(err) / (2 * R));
         CHECK(std::abs(err) < 0.005 * 2 * R);
-        CHECK(std::abs(st.meanY - analyticY) < 0.005 * 2 * R);
+        CHECK(std::abs(st.meanMeshY - analyticY) < 0.005 * 2 * R);
     }
 }
 
@@ -106,9 +91,9 @@ TEST_CASE("horizontal cylinder settles at the draft of its own mesh volume", "[b
         btBuoyantBodySettings body;
         body.density = 1000.0 * s;
         w.add(shape, body, makePose(btVector3(0, btScalar(R - 2 * R * s + 0.05), 0), btVector3(0, 0, 1), 90), bs);
-        const Settled st = settle(w, 0, 10.0, 3.0);
-        const double err = drafError(mesh, st.last, st.meanY, w.body(0).getMass());
-        std::printf("cylinder s=%.2f  centre y %.6f  oracle level error %.3f%% of height\n", s, st.meanY,
+        const Track st = settle(w, 0, 10.0, 3.0);
+        const double err = drafError(mesh, st.last, st.meanMeshY, w.body(0).getMass());
+        std::printf("cylinder s=%.2f  centre y %.6f  oracle level error %.3f%% of height\n", s, st.meanMeshY,
                     100 * std::abs(err) / (2 * R));
         CHECK(std::abs(err) < 0.005 * 2 * R);
         // The axis stays horizontal.

@@ -1,7 +1,7 @@
 // Every shipped scene (bullet_examples/scenes/*.json) through the runner with its expected outcome against
 // an analytic oracle; the default primitive resolution against the analytic volumes; the substep count not
 // changing a dynamic motion. (hard_cases.json is covered by test_run_command.cpp.)
-#include "bullet/BulletTestWorld.h"
+#include "oracles/BulletTestWorld.h"
 #include "cli/RunCommand.h"
 #include "cli/SceneFile.h"
 #include "mesh/PrimitiveMeshes.h"

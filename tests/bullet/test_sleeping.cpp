@@ -1,7 +1,7 @@
 // Sleeping (issue 4: "keeps wave-driven bodies awake, lets calm floating bodies sleep"). At rest on the water,
 // Bullet's stored velocity is +g·dt (symplectic Euler, DESIGN-NOTES 3), above Bullet's usual thresholds at
 // 240 Hz; the action judges rest by the real motion of the COM instead.
-#include "bullet/BulletTestWorld.h"
+#include "oracles/BulletTestWorld.h"
 #include "mesh/PrimitiveMeshes.h"
 #include "water/btGerstnerWaterSurface.h"
 

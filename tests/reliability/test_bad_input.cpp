@@ -4,7 +4,7 @@
 // catalogued in tests/mesh/MeshRepairTests.cpp; here are the in-memory cases and everything downstream.
 // Expected messages are the documented contract (docs/bad-input.md), written by hand.
 
-#include "reliability/ReliabilityWorld.h"
+#include "reliability/ReliabilityHelpers.h"
 
 #include "cli/CliErrors.h"
 #include "cli/SceneFile.h"
@@ -87,12 +87,12 @@ bool same(const BodyState& a, const BodyState& b) {
 
 /// A cube of density 500 half in the water, with its action, after `frames` frames.
 struct OneCube {
-    ReliabilityWorld w;
+    CheckedWorld w;
     std::size_t i;
     explicit OneCube(int frames = 10) {
         btBuoyantBodySettings body;
         body.density = 500;
-        i = w.add(cubeShape(), body, pose(btVector3(0, -0.5, 0)));
+        i = w.add(cubeShape(), body, makePose(btVector3(0, -0.5, 0)));
         w.step(frames);
     }
 };
@@ -285,21 +285,21 @@ TEST_CASE("bad input: body settings and poses rejected by btBuoyantBody", "[reli
         btBuoyantBodySettings bad;
         k.spoil(bad);
         CHECK_THROWS_WITH(bad.validate(), Equals(k.message));
-        CHECK_THROWS_WITH(btBuoyantBody(shape, bad, pose(btVector3(0, 0, 0))), Equals(k.message));
+        CHECK_THROWS_WITH(btBuoyantBody(shape, bad, makePose(btVector3(0, 0, 0))), Equals(k.message));
         CHECK_THROWS_WITH(btBuoyantBodyMassProperties(*shape, bad), Equals(k.message));
     }
-    CHECK_THROWS_WITH(btBuoyantBody(nullptr, btBuoyantBodySettings(), pose(btVector3(0, 0, 0))), Equals("shape: null"));
+    CHECK_THROWS_WITH(btBuoyantBody(nullptr, btBuoyantBodySettings(), makePose(btVector3(0, 0, 0))), Equals("shape: null"));
 
     // Regression (issue 10): a NaN or scaled pose went straight into the btRigidBody.
-    btTransform nanPose = pose(btVector3(0, 0, 0));
+    btTransform nanPose = makePose(btVector3(0, 0, 0));
     nanPose.getOrigin().setY(btScalar(kNaN));
     CHECK_THROWS_WITH(btBuoyantBody(shape, btBuoyantBodySettings(), nanPose),
                       Equals("meshWorldTransform: must be finite with an orthonormal rotation"));
-    btTransform nanRotation = pose(btVector3(0, 0, 0));
+    btTransform nanRotation = makePose(btVector3(0, 0, 0));
     nanRotation.getBasis()[1][2] = btScalar(kNaN);
     CHECK_THROWS_WITH(btBuoyantBody(shape, btBuoyantBodySettings(), nanRotation),
                       Equals("meshWorldTransform: must be finite with an orthonormal rotation"));
-    btTransform scaled = pose(btVector3(0, 0, 0));
+    btTransform scaled = makePose(btVector3(0, 0, 0));
     scaled.setBasis(scaled.getBasis().scaled(btVector3(2, 2, 2)));
     CHECK_THROWS_WITH(btBuoyantBody(shape, btBuoyantBodySettings(), scaled),
                       Equals("meshWorldTransform: must be finite with an orthonormal rotation"));
@@ -329,7 +329,7 @@ TEST_CASE("bad input: updateMassProperties leaves the body as it was", "[reliabi
     // A fixed body has no mass to update.
     btBuoyantBodySettings fixed;
     fixed.fixed = true;
-    btBuoyantBody f(cubeShape(), fixed, pose(btVector3(0, 0, 0)));
+    btBuoyantBody f(cubeShape(), fixed, makePose(btVector3(0, 0, 0)));
     CHECK_THROWS_WITH(f.updateMassProperties(1, Eigen::Vector3d::Zero(), I),
                       Equals("updateMassProperties: the body is fixed"));
 }
@@ -352,7 +352,7 @@ TEST_CASE("bad input: buoyancy world parameters", "[reliability][bad-input]") {
 TEST_CASE("bad input: action with null arguments", "[reliability][bad-input]") {
     btFlatWaterSurface water;
     btBuoyancyWorld w(&water);
-    btBuoyantBody b(cubeShape(), btBuoyantBodySettings(), pose(btVector3(0, 0, 0)));
+    btBuoyantBody b(cubeShape(), btBuoyantBodySettings(), makePose(btVector3(0, 0, 0)));
     CHECK_THROWS_WITH(btBuoyancyAction(nullptr, cubeShape(), &w), Equals("body: null"));
     CHECK_THROWS_WITH(btBuoyancyAction(b.getRigidBody(), nullptr, &w), Equals("shape: null"));
     CHECK_THROWS_WITH(btBuoyancyAction(b.getRigidBody(), cubeShape(), nullptr), Equals("world: null"));
@@ -382,11 +382,11 @@ TEST_CASE("bad input: zero, negative, NaN and infinite time steps apply nothing"
 }
 
 TEST_CASE("bad input: body removed from the world while its action remains", "[reliability][bad-input]") {
-    ReliabilityWorld w;
+    CheckedWorld w;
     btBuoyantBodySettings body;
     body.density = 500;
-    const std::size_t removed = w.add(cubeShape(), body, pose(btVector3(0, -0.5, 0)));
-    const std::size_t other = w.add(cubeShape(), body, pose(btVector3(5, -0.5, 0)));
+    const std::size_t removed = w.add(cubeShape(), body, makePose(btVector3(0, -0.5, 0)));
+    const std::size_t other = w.add(cubeShape(), body, makePose(btVector3(5, -0.5, 0)));
     w.step(5);
     w.world().removeRigidBody(w.rigid(removed));  // the action stays in the world
     const BodyState before = snapshot(w.body(removed));
@@ -419,14 +419,14 @@ TEST_CASE("bad input: NaN pose or absurd velocity never reaches the body through
         CHECK(r->getAngularVelocity() == w);
     }
     SECTION("NaN in the mesh-in-COM frame of a plain rigid body") {
-        ReliabilityWorld w;
+        CheckedWorld w;
         btBoxShape box(btVector3(0.5, 0.5, 0.5));
         btVector3 inertia;
         box.calculateLocalInertia(500, inertia);
         btRigidBody r(btRigidBody::btRigidBodyConstructionInfo(500, nullptr, &box, inertia));
-        r.setWorldTransform(pose(btVector3(0, 0, 0)));
+        r.setWorldTransform(makePose(btVector3(0, 0, 0)));
         w.world().addRigidBody(&r);
-        btTransform meshInCom = pose(btVector3(-0.5, -0.5, -0.5));
+        btTransform meshInCom = makePose(btVector3(-0.5, -0.5, -0.5));
         btBuoyancyAction a(&r, cubeShape(), &w.water(), btBuoyancySettings(), meshInCom);
         meshInCom.getBasis()[0][0] = btScalar(kNaN);
         a.setMeshInComFrame(meshInCom);

@@ -3,6 +3,13 @@
 
 #include "mesh/MeshImport.h"
 #include "mesh/MeshRepair.h"
+#include "mesh/PrimitiveMeshes.h"
+
+#include <Eigen/Geometry>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
 
 #include <catch2/catch.hpp>
 
@@ -25,6 +32,85 @@ TEST_CASE("fuzz regression: a cavity poking out of a distorted body is refused b
                    {9, 10, 8},  {10, 11, 8},  {14, 13, 12}, {15, 14, 12}, {13, 9, 8},   {12, 13, 8},
                    {14, 15, 11}, {10, 14, 11}, {15, 12, 8}, {11, 15, 8},  {14, 10, 9},  {13, 14, 9}};
     CHECK_THROWS_WITH(buoyancy::prepareMesh(m, "m.obj"), StartsWith("m.obj: encloses no positive volume: the components add up to -0.388"));
+}
+
+namespace {
+
+/// A 32 m box (component 1) with n × n small closed boxes of `part` m centred on its top face y = 16 m
+/// (components 2…n²+1), each crossing it: the kind of soup that made prepareMesh slow.
+buoyancy::TriangleMesh partsOnABigBox(int n, double part) {
+    buoyancy::TriangleMesh m = buoyancy::makeBoxMesh(32, 32, 32);
+    m.corner_uvs.clear();  // a soup without UVs, like the fuzzer's
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const buoyancy::TriangleMesh b = buoyancy::makeBoxMesh(part, part, part);
+            const Eigen::Vector3d at(-15 + 30.0 * (i + 0.37) / n, 16, -15 + 30.0 * (j + 0.61) / n);
+            const int base = static_cast<int>(m.vertices.size());
+            for (const auto& v : b.vertices) m.vertices.push_back(v + at);
+            for (const auto& t : b.triangles) m.triangles.push_back(t + Eigen::Vector3i::Constant(base));
+        }
+    return m;
+}
+
+double prepareSeconds(buoyancy::TriangleMesh& m, buoyancy::MeshReport& report) {
+    const auto t0 = std::chrono::steady_clock::now();
+    report = buoyancy::prepareMesh(m, "parts.obj");
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+TEST_CASE("fuzz regression: many small parts crossing a large one are checked quickly",
+          "[reliability][fuzz-regression]") {
+    // fuzz_mesh_prepare: a 4096-triangle soup of small closed parts crossing large triangles took 26 s.
+    // The component-intersection check built a hash grid per pair of components with the cell size of the
+    // median triangle, and a large triangle went into every cell its box covered (up to 16M). Now one
+    // bounding-volume hierarchy over all triangles: near-linear in the triangle count.
+    // Expected values by construction: every small box crosses the top face of the big one and no other
+    // small box (they are 30/n m apart), so exactly n² pairs (1&2, 1&3, ...) intersect.
+    buoyancy::MeshReport small, large;
+    buoyancy::TriangleMesh a = partsOnABigBox(12, 0.002), b = partsOnABigBox(48, 0.002);  // 1740 and 27660 triangles
+    const double ta = prepareSeconds(a, small), tb = prepareSeconds(b, large);
+    std::printf("parts on a big box: %zu triangles %.4f s, %zu triangles %.4f s\n", a.triangles.size(), ta,
+                b.triangles.size(), tb);
+    CHECK(small.components == 145);
+    CHECK(large.components == 2305);
+    bool warnedSmall = false, warnedLarge = false;
+    for (const auto& w : small.warnings)
+        warnedSmall |= w.message == "parts.obj: 144 pairs of components intersect each other (1&2, 1&3, 1&4, 1&5, "
+                                    "1&6, ...): the volume they share is counted twice";
+    for (const auto& w : large.warnings)
+        warnedLarge |= w.message.rfind("parts.obj: 2304 pairs of components intersect each other (1&2, ", 0) == 0;
+    CHECK(warnedSmall);
+    CHECK(warnedLarge);
+    // The old check took 24 s for 6 × 6 such parts (444 triangles; 4.4 s for 12 × 12 parts of 1 cm) and grew
+    // with (big / small)² per pair; now (Release, 2 cores) ≈ 0.02 s and 0.2 s: the bounds leave 25×.
+    CHECK(ta < 1.0);
+    CHECK(tb < 5.0);
+}
+
+TEST_CASE("fuzz regression: two crossing parts that each hold the other's probe point do not hang",
+          "[reliability][fuzz-regression]") {
+    // fuzz_mesh_prepare (timeout, a 175-byte input: two closed 12-triangle parts crossing each other): the
+    // nesting test found each part "inside" the other (the winding number at a point of one surface is 1
+    // for the other), so the parent links formed a cycle and the walk to the outermost part never ended.
+    // Generated input of the same kind: a unit cube and the same cube turned 45° about the vertical axis
+    // through its centre (each one's first face centroid lies inside the other). Expected by construction:
+    // two components, not nested, one intersecting pair.
+    buoyancy::TriangleMesh m = buoyancy::makeBoxMesh(1, 1, 1);
+    m.corner_uvs.clear();
+    const buoyancy::TriangleMesh b = buoyancy::makeBoxMesh(1, 1, 1);
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    const int base = static_cast<int>(m.vertices.size());
+    for (const auto& v : b.vertices) m.vertices.push_back(turn * v);
+    for (const auto& t : b.triangles) m.triangles.push_back(t + Eigen::Vector3i::Constant(base));
+    const buoyancy::MeshReport r = buoyancy::prepareMesh(m, "crossing.obj");
+    CHECK(r.components == 2);
+    CHECK(r.cavities == 0);
+    CHECK(r.flipped_components == 0);
+    REQUIRE(r.warnings.size() == 1);
+    CHECK(r.warnings[0].message ==
+          "crossing.obj: 1 pair of components intersect each other (1&2): the volume they share is counted twice");
 }
 
 #if defined(BUOYANCY_CLI_PATH)

@@ -3,7 +3,7 @@
 // and positive-definite inertia — even for degenerate mass distributions (ballast on a line, a thin rod,
 // a shell).
 
-#include "reliability/ReliabilityWorld.h"
+#include "reliability/ReliabilityHelpers.h"
 
 #include "mesh/PrimitiveMeshes.h"
 
@@ -25,7 +25,7 @@ std::shared_ptr<const btBuoyancyShape> shape(const buoyancy::TriangleMesh& m) {
 }  // namespace
 
 TEST_CASE("invariants: the check names each broken invariant", "[reliability][invariants]") {
-    btBuoyantBody b(shape(buoyancy::makeBoxMesh(1, 2, 3)), btBuoyantBodySettings(), pose(btVector3(1, 2, 3)));
+    btBuoyantBody b(shape(buoyancy::makeBoxMesh(1, 2, 3)), btBuoyantBodySettings(), makePose(btVector3(1, 2, 3)));
     btRigidBody& r = *b.getRigidBody();
     REQUIRE(btBuoyancyCheckBody(r).empty());
     ScopedFpTrapsOff nanOnPurpose;
@@ -69,7 +69,7 @@ TEST_CASE("invariants: built bodies have mass > 0 and positive-definite inertia"
             btBuoyantBodySettings s;
             s.massModel = model;
             s.density = 7850;
-            btBuoyantBody b(shape(*m), s, pose(btVector3(0, 0, 0), btVector3(1, 1, 0), 33));
+            btBuoyantBody b(shape(*m), s, makePose(btVector3(0, 0, 0), btVector3(1, 1, 0), 33));
             CHECK(b.getMass() > 0);
             CHECK(btBuoyancyCheckBody(*b.getRigidBody()).empty());
         }
@@ -78,6 +78,6 @@ TEST_CASE("invariants: built bodies have mass > 0 and positive-definite inertia"
     btBuoyantBodySettings s;
     s.density = 1;
     s.ballast = {{Eigen::Vector3d(0, 0, -50), 1e6}, {Eigen::Vector3d(0, 0, 50), 1e6}};
-    btBuoyantBody b(shape(rod), s, pose(btVector3(0, 0, 0)));
+    btBuoyantBody b(shape(rod), s, makePose(btVector3(0, 0, 0)));
     CHECK(btBuoyancyCheckBody(*b.getRigidBody()).empty());
 }

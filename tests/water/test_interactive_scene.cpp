@@ -55,7 +55,7 @@ std::map<std::string, Track> readTracks(const std::string& csv) {
 
 TEST_CASE("interactive water in the scene runner: dropped and neighbouring boxes end at their analytic drafts",
           "[water][interactive][scene]") {
-    const int resolution = GENERATE(64, 128);
+    const int resolution = GENERATE(64, 128, 256);
     const double dropHeight = GENERATE(1.0, 0.3);
     const auto dir = std::filesystem::temp_directory_path() /
                      ("buoyancy_interactive_scene_" + std::to_string(resolution) + "_" + std::to_string(int(dropHeight * 10)));

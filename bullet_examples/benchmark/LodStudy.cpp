@@ -1,0 +1,171 @@
+#include "benchmark/LodStudy.h"
+
+#include "benchmark/BodyTiming.h"
+#include "benchmark/Scaling.h"
+
+#include "bullet/btBuoyancyAction.h"
+#include "bullet/btBuoyancyShape.h"
+#include "bullet/btBuoyancyWorld.h"
+#include "bullet/btBuoyantBodyBuilder.h"
+#include "integrals/Hydrostatics.h"
+#include "integrals/WaterPatch.h"
+#include "water/btGerstnerWaterSurface.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace buoyancy::bench {
+
+namespace {
+
+constexpr double kRho = 1000.0, kG = 9.81;
+using Clock = std::chrono::steady_clock;
+
+template <class F>
+double nsPerCall(F&& f, int minCalls) {
+    double best = 1e300;
+    for (int b = 0; b < 3; ++b) {
+        const auto t0 = Clock::now();
+        for (int i = 0; i < minCalls; ++i) f();
+        best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count() / minCalls);
+    }
+    return 1e9 * best;
+}
+
+std::FILE* openCsv(const std::string& path, const char* header) {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + path);
+    std::fputs(header, f);
+    return f;
+}
+
+}  // namespace
+
+std::string runLodStudy(const std::vector<BenchShape>& shapes, const std::vector<std::string>& waveShapes,
+                        const std::string& outDir, bool quick, std::ostream& log) {
+    std::ostringstream md;
+    // ---- Waves: water patch against exact per-vertex queries (same clipping, same wave field) --------------
+    {
+        std::FILE* f = openCsv(outDir + "/waves_lod.csv",
+                               "shape,triangles,nodes,pose,time,volume_error_pct,cob_error_pct,torque_error_pct,"
+                               "ns_hydrostatics\n");
+        const btGerstnerWaterSurface sea(p3Sea());
+        const std::vector<int> nodes = quick ? std::vector<int>{8} : std::vector<int>{5, 6, 8, 12, 16};
+        const std::vector<double> times = quick ? std::vector<double>{0.0} : std::vector<double>{0.0, 3.7, 8.1};
+        for (const BenchShape& s : shapes) {
+            if (std::find(waveShapes.begin(), waveShapes.end(), s.name) == waveShapes.end()) continue;
+            btBuoyancySettings st;
+            st.method = btBuoyancyMethod::ExactMesh;
+            const auto shape = btBuoyancyShape::create(s.mesh, st);
+            const double V = shape->getVolume(), diag = boundingBoxDiagonal(s.mesh);
+            const std::vector<BenchPose> poses = benchPoses(s.mesh, quick ? std::vector<double>{0.5} : std::vector<double>{0.3, 0.5, 0.7},
+                                                            quick ? std::vector<double>{0} : std::vector<double>{0, 20});
+            std::map<int, double> worstV, worstC, sumNs;
+            double exactNs = 0;
+            int count = 0;
+            for (const BenchPose& p : poses)
+                for (double t : times) {
+                    // Place the body where the sea is: at a point of the sea, with its pose's draft about the local level.
+                    Eigen::Isometry3d pose = p.pose;
+                    const double x = 7.3 * (count + 1), z = -4.1 * (count + 1);
+                    pose.pretranslate(Eigen::Vector3d(x, sea.height(x, z, t), z));
+                    const Eigen::Vector3d ref = pose * shape->getUnitSolid().centre;
+                    const HydrostaticsResult exact = clippedHydrostatics(shape->getMesh(), pose, sea, t, kRho, kG, ref);
+                    exactNs += nsPerCall([&] { clippedHydrostatics(shape->getMesh(), pose, sea, t, kRho, kG, ref); }, quick ? 3 : 10);
+                    const Eigen::Vector3d bc = pose * shape->getBoundsCentre();
+                    for (int m : nodes) {
+                        WaterPatch patch;
+                        btWaterQueryCache cache;
+                        HydrostaticsResult h;
+                        const double ns = nsPerCall([&] {
+                            patch.build(sea, bc.x(), bc.z(), shape->getBoundsRadius(), t, m, cache);
+                            h = clippedHydrostatics(shape->getMesh(), pose, sea, t, kRho, kG, ref, &patch);
+                        }, quick ? 3 : 10);
+                        const double eV = 100.0 * std::abs(h.submerged_volume - exact.submerged_volume) / V;
+                        const double eC = 100.0 * (h.centre_of_buoyancy - exact.centre_of_buoyancy).norm() / diag;
+                        const double eT = 100.0 * (h.torque - exact.torque).norm() / (kRho * kG * V * diag);
+                        std::fprintf(f, "%s,%zu,%d,%s,%.1f,%.6g,%.6g,%.6g,%.0f\n", s.name.c_str(), s.mesh.triangleCount(), m,
+                                     p.id.c_str(), t, eV, eC, eT, ns);
+                        worstV[m] = std::max(worstV[m], eV);
+                        worstC[m] = std::max(worstC[m], eC);
+                        sumNs[m] += ns;
+                    }
+                    ++count;
+                }
+            std::fprintf(f, "%s,%zu,0,exact-queries,,0,0,0,%.0f\n", s.name.c_str(), s.mesh.triangleCount(), exactNs / count);
+            md << "- Waves, `" << s.name << "` (" << s.mesh.triangleCount() << " triangles, exact-mesh, P3 sea, " << count
+               << " poses × times): one exact query per vertex costs " << std::lround(exactNs / count / 1000.0)
+               << " µs per hydrostatic evaluation;";
+            for (int m : nodes) {
+                char b[200];
+                std::snprintf(b, sizeof b, " %d×%d patch: %.0f µs, worst volume error %.2g %%, CoB %.2g %%;", m, m,
+                              sumNs[m] / count / 1000.0, worstV[m], worstC[m]);
+                md << b;
+            }
+            md << " (errors against the exact-query clip at the same wave field, `waves_lod.csv`).\n";
+            log << "  waves LOD " << s.name << " done\n";
+        }
+        std::fclose(f);
+    }
+    // ---- Drag: clusters against every fine sample ------------------------------------------------------------
+    {
+        std::FILE* f = openCsv(outDir + "/drag_lod.csv",
+                               "shape,triangles,clusters_max,clusters,fine_samples,pose,drag_force_error_pct,"
+                               "drag_torque_error_pct,ns_per_body_substep\n");
+        const std::vector<int> ks = quick ? std::vector<int>{0, 64} : std::vector<int>{0, 16, 32, 64, 128, 256};
+        TimingOptions timing;
+        if (quick) {
+            timing.minBatchSeconds = 2e-4;
+            timing.batches = 2;
+        }
+        md << "- Drag level of detail (flat water, v = (0.5, −0.3, 0.2) m/s, ω = (0.2, 0.1, −0.3) rad/s; error of the drag "
+              "force against every fine drag sample, % of its magnitude, worst over 3 poses; `drag_lod.csv`):";
+        for (const BenchShape& s : shapes) {
+            const auto shape = btBuoyancyShape::create(s.mesh);
+            const std::vector<BenchPose> poses = benchPoses(s.mesh, {0.3, 0.6, 0.9}, {0});
+            std::map<int, std::pair<double, double>> fine;  // pose index → (|F|, |τ|) of K = 0
+            std::vector<Eigen::Vector3d> fineF, fineT;
+            md << " `" << s.name << "`:";
+            for (int k : ks) {
+                btBuoyancySettings st;
+                st.dragClusters = k;
+                SingleBodyRig rig(shape);
+                btBuoyancyAction action(rig.body(), &rig.buoyancyWorld(), st);
+                double worstF = 0, worstT = 0, ns = 0;
+                for (std::size_t i = 0; i < poses.size(); ++i) {
+                    const double t = rig.nsPerSubstep(action, poses[i].pose, timing);
+                    ns += t;
+                    const btBuoyancyResult& r = action.getLastResult();
+                    const Eigen::Vector3d F(r.dragForce.x(), r.dragForce.y(), r.dragForce.z());
+                    const Eigen::Vector3d T(r.dragTorque.x(), r.dragTorque.y(), r.dragTorque.z());
+                    if (k == 0) {
+                        fineF.push_back(F);
+                        fineT.push_back(T);
+                    }
+                    const double eF = fineF[i].norm() > 0 ? 100.0 * (F - fineF[i]).norm() / fineF[i].norm() : 0.0;
+                    const double eT = fineT[i].norm() > 0 ? 100.0 * (T - fineT[i]).norm() / fineT[i].norm() : 0.0;
+                    worstF = std::max(worstF, eF);
+                    worstT = std::max(worstT, eT);
+                    std::fprintf(f, "%s,%zu,%d,%zu,%zu,%s,%.4g,%.4g,%.0f\n", s.name.c_str(), s.mesh.triangleCount(), k,
+                                 action.getDragClusters().size(), shape->getDragSamples().size(), poses[i].id.c_str(), eF,
+                                 eT, t);
+                }
+                char b[160];
+                std::snprintf(b, sizeof b, " K=%d → %zu clusters %.1f µs, force %.2g %%, torque %.2g %%;", k,
+                              action.getDragClusters().size(), ns / poses.size() / 1000.0, worstF, worstT);
+                md << b;
+            }
+        }
+        md << "\n";
+        std::fclose(f);
+    }
+    return md.str();
+}
+
+}  // namespace buoyancy::bench

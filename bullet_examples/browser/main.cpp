@@ -1,0 +1,19 @@
+// buoyancy_browser: the scene browser app (issue 8). See browser/BrowserOptions.h for the command line.
+
+#include "browser/BrowserApp.h"
+#include "browser/BrowserOptions.h"
+
+#include <exception>
+#include <iostream>
+
+int main(int argc, char** argv) {
+    using namespace buoyancy::browser;
+    BrowserOptions options;
+    try {
+        options = parseBrowserOptions(argc, argv);
+    } catch (const std::exception& e) {
+        std::cerr << "error: " << e.what() << '\n';
+        return 2;
+    }
+    return runBrowser(options);
+}

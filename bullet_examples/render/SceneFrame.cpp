@@ -1,0 +1,151 @@
+#include "render/SceneFrame.h"
+
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+namespace buoyancy::render {
+
+namespace {
+
+Eigen::Matrix4f toMatrix(const btTransform& t) {
+    Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+    const btMatrix3x3& b = t.getBasis();
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) m(r, c) = float(b[r][c]);
+        m(r, 3) = float(t.getOrigin()[r]);
+    }
+    return m;
+}
+
+Eigen::Vector3f toVec(const btVector3& v) { return Eigen::Vector3f(float(v.x()), float(v.y()), float(v.z())); }
+
+}  // namespace
+
+Eigen::Vector3f bodyColour(std::size_t index) {
+    static const float palette[][3] = {{0.90f, 0.55f, 0.20f}, {0.95f, 0.85f, 0.30f}, {0.80f, 0.30f, 0.30f},
+                                       {0.60f, 0.45f, 0.80f}, {0.35f, 0.75f, 0.45f}, {0.90f, 0.60f, 0.70f},
+                                       {0.55f, 0.40f, 0.25f}, {0.85f, 0.85f, 0.85f}};
+    const float* c = palette[index % (sizeof palette / sizeof palette[0])];
+    return Eigen::Vector3f(c[0], c[1], c[2]);
+}
+
+RenderCamera frameSceneCamera(const cli::Scene& scene, const cli::SceneWorld& world) {
+    RenderCamera cam;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = Eigen::Vector3d::Constant(-1e300);
+    for (const auto& body : world.bodies) {
+        const btTransform t = body->getMeshWorldTransform();
+        const Eigen::Vector3d& c = body->getShape()->getBoundsCentre();
+        const btVector3 w = t(btVector3(btScalar(c.x()), btScalar(c.y()), btScalar(c.z())));
+        const double r = body->getShape()->getBoundsRadius();
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], double(w[k]) - r);
+            hi[k] = std::max(hi[k], double(w[k]) + r);
+        }
+    }
+    if (world.bodies.empty()) lo = hi = Eigen::Vector3d(0, scene.waterHeight, 0);
+    const Eigen::Vector3d centre = 0.5 * (lo + hi);
+    const double radius = std::max(0.5 * (hi - lo).norm(), 0.5);
+    cam.target = centre.cast<float>();
+    cam.target.y() = float(0.5 * (centre.y() + scene.waterHeight));  // keep the waterline in view
+    cam.fovDeg = 40.f;
+    cam.distance = float(std::max(4.5, 1.0 * radius / std::sin(0.5 * cam.fovDeg * M_PI / 180.0)));
+    // The scene's "camera" block overrides what it gives.
+    if (scene.camera.target) cam.target = scene.camera.target->cast<float>();
+    if (scene.camera.distance) cam.distance = float(*scene.camera.distance);
+    if (scene.camera.yaw) cam.yawDeg = float(*scene.camera.yaw);
+    if (scene.camera.pitch) cam.pitchDeg = float(*scene.camera.pitch);
+    return cam;
+}
+
+void buildSceneFrame(const cli::Scene& scene, const cli::SceneWorld& world, const SceneFrameOptions& options,
+                     RenderFrame& out) {
+    const double t = world.time();
+    out.bodies.clear();
+    out.arrows.clear();
+    out.samples.positions.clear();
+    out.samples.wet.clear();
+
+    // Water grid: the interactive grid's own extent, or a square around the camera target.
+    RenderWater& w = out.water;
+    // A fluid lighter than 100 kg/m³ is air (the balloon): its "surface" is not drawn, nothing is wet.
+    w.visible = world.water != nullptr && scene.waterDensity >= 100.0;
+    if (w.visible) {
+        const int n = std::max(2, options.waterResolution);
+        double cx = out.camera.target.x(), cz = out.camera.target.z();
+        double hx = options.waterExtent > 0 ? options.waterExtent : std::max(8.0, 2.0 * double(out.camera.distance));
+        double hz = hx;
+        if (scene.water.type == "interactive") {
+            cx = scene.water.centre.x();
+            cz = scene.water.centre.y();
+            hx = 0.5 * scene.water.size.x();
+            hz = 0.5 * scene.water.size.y();
+        }
+        w.nx = w.nz = n;
+        w.x0 = float(cx - hx);
+        w.z0 = float(cz - hz);
+        w.dx = float(2 * hx / (n - 1));
+        w.dz = float(2 * hz / (n - 1));
+        std::vector<double> xs(std::size_t(n) * n), zs(xs.size()), hs(xs.size());
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                xs[std::size_t(j) * n + i] = double(w.x0) + i * double(w.dx);
+                zs[std::size_t(j) * n + i] = double(w.z0) + j * double(w.dz);
+            }
+        world.water->heights(xs.data(), zs.data(), xs.size(), t, hs.data());
+        w.heights.resize(hs.size());
+        for (std::size_t k = 0; k < hs.size(); ++k) w.heights[k] = std::isfinite(hs[k]) ? float(hs[k]) : 0.f;
+    }
+
+    out.ground.visible = world.ground != nullptr;
+    out.ground.normal = world.groundNormal.cast<float>();
+    out.ground.offset = float(world.groundOffset);
+
+    const bool arrows = options.arrows && int(world.bodies.size()) <= options.maxArrowBodies;
+    const double g = -scene.gravity.y();
+    for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+        const btBuoyantBody& body = *world.bodies[i];
+        const btTransform meshWorld = body.getMeshWorldTransform();
+        RenderBody rb;
+        rb.mesh = &body.getShape()->getMesh();
+        rb.meshToWorld = toMatrix(meshWorld);
+        rb.colour = bodyColour(i);
+        rb.wetColour = 0.45f * rb.colour + Eigen::Vector3f(0.02f, 0.08f, 0.22f);
+        out.bodies.push_back(rb);
+
+        const btBuoyancyAction* action = i < world.actions.size() ? world.actions[i].get() : nullptr;
+        if (arrows && action) {
+            const double weight = body.getMass() * g;
+            if (weight > 0) {
+                const double perNewton = options.arrowScale * body.getShape()->getBoundsRadius() / weight;
+                const Eigen::Vector3f com = toVec(body.getRigidBody()->getCenterOfMassPosition());
+                const btBuoyancyResult& r = action->getLastResult();
+                out.arrows.push_back({com, Eigen::Vector3f(0.f, float(-weight * perNewton), 0.f),
+                                      Eigen::Vector3f(0.9f, 0.1f, 0.1f)});
+                if (r.submergedVolume > 0)
+                    out.arrows.push_back({toVec(r.centreOfBuoyancy), toVec(r.buoyancyForce) * float(perNewton),
+                                          Eigen::Vector3f(0.1f, 0.8f, 0.2f)});
+                if (double(r.dragForce.length()) > 0.01 * weight)
+                    out.arrows.push_back({com, toVec(r.dragForce) * float(perNewton), Eigen::Vector3f(0.15f, 0.3f, 0.95f)});
+            }
+        }
+
+        if (options.samples && world.water) {
+            const buoyancy::SurfaceSamples& s = body.getShape()->getDragSamples();
+            std::vector<double> xs(s.size()), zs(s.size()), hs(s.size());
+            const std::size_t first = out.samples.positions.size();
+            for (std::size_t k = 0; k < s.size(); ++k) {
+                const btVector3 p = meshWorld(btVector3(btScalar(s.px[k]), btScalar(s.py[k]), btScalar(s.pz[k])));
+                out.samples.positions.push_back(toVec(p));
+                xs[k] = double(p.x());
+                zs[k] = double(p.z());
+            }
+            world.water->heights(xs.data(), zs.data(), xs.size(), t, hs.data());
+            for (std::size_t k = 0; k < s.size(); ++k)  // wet: the sample lies below the water height
+                out.samples.wet.push_back(out.samples.positions[first + k].y() < hs[k] ? 1 : 0);
+        }
+    }
+}
+
+}  // namespace buoyancy::render

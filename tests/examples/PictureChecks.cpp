@@ -1,0 +1,35 @@
+#include "PictureChecks.h"
+
+#include <stb_image.h>
+
+#include <set>
+
+namespace buoyancy::test {
+
+bool analysePicture(const std::string& path, PictureStats& out, int xFrom) {
+    int w = 0, h = 0, n = 0;
+    unsigned char* p = stbi_load(path.c_str(), &w, &h, &n, 3);
+    if (!p) return false;
+    out = PictureStats{};
+    out.width = w;
+    out.height = h;
+    std::set<int> colours;
+    long lower = 0, water = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = xFrom; x < w; ++x) {
+            const unsigned char* c = p + 3 * (std::size_t(y) * w + x);
+            const int r = c[0], g = c[1], b = c[2];
+            colours.insert((r >> 5) << 6 | (g >> 5) << 3 | (b >> 5));
+            if (r > b + 60 && r > 120) ++out.warm;
+            if (y >= h / 2) {
+                ++lower;
+                if (b > r + 40 && b > 90) ++water;
+            }
+        }
+    stbi_image_free(p);
+    out.waterLower = lower ? double(water) / double(lower) : 0.0;
+    out.distinctColours = int(colours.size());
+    return true;
+}
+
+}  // namespace buoyancy::test
