@@ -10,7 +10,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 COLOURS = {"default": "black", "texel-centre": "tab:red", "exact-coverage": "tab:blue", "exact-mesh": "tab:green",
-           "probes": "tab:purple", "downward-faces": "tab:orange"}
+           "probes": "tab:purple", "downward-faces": "tab:orange", "sub-texel": "tab:cyan", "lod": "tab:brown"}
 FLOOR = 1e-10  # exact methods sit at rounding level (1e-12 %): drawn at this floor
 
 
@@ -42,7 +42,7 @@ def pareto(d, key, title, fname):
             pts = [(c["ns"], max(c[key], FLOOR), k) for k, c in cf.items() if k[0] == s and k[1] == method]
             if not pts: continue
             pts.sort()
-            if method in ("texel-centre", "exact-coverage"):
+            if method in ("texel-centre", "exact-coverage", "sub-texel"):
                 ax.plot([p[0] for p in pts], [p[1] for p in pts], "-o", color=COLOURS[method], ms=4, label=method)
                 for x, y, k in pts: ax.annotate(str(k[2]), (x, y), fontsize=6, xytext=(2, 2), textcoords="offset points")
             else:
@@ -97,11 +97,14 @@ def scaling(d):
     if not os.path.exists(p): return
     rows = read(p)
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
-    for t in sorted({int(r["threads"]) for r in rows}):
-        rs = sorted((r for r in rows if int(r["threads"]) == t), key=lambda r: int(r["bodies"]))
-        x = [int(r["bodies"]) for r in rs]
-        ax.plot(x, [float(r["ns_per_body_substep_total"]) / 1e3 for r in rs], "-o", label=f"total, {t} thread(s)")
-        ax.plot(x, [float(r["ns_per_body_substep_buoyancy"]) / 1e3 for r in rs], "--x", label=f"buoyancy, {t} thread(s)")
+    variants = sorted({r.get("variant", "") for r in rows})
+    for v in variants:
+        for t in sorted({int(r["threads"]) for r in rows if r.get("variant", "") == v}):
+            rs = sorted((r for r in rows if int(r["threads"]) == t and r.get("variant", "") == v), key=lambda r: int(r["bodies"]))
+            x = [int(r["bodies"]) for r in rs]
+            tag = f", {v}" if v else ""
+            ax.plot(x, [float(r["ns_per_body_substep_total"]) / 1e3 for r in rs], "-o", label=f"total, {t} thread(s){tag}")
+            ax.plot(x, [float(r["ns_per_body_substep_buoyancy"]) / 1e3 for r in rs], "--x", label=f"buoyancy, {t} thread(s){tag}")
     budget = 1e6 / 240 / 1000  # µs of wall time per body-substep for 1,000 bodies in real time at 240 Hz
     ax.axhline(budget, color="grey", lw=0.8)
     ax.text(1, budget * 1.15, "real time, 1,000 bodies at 240 Hz (P3)", fontsize=7, color="grey")

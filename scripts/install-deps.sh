@@ -13,7 +13,7 @@ PACKAGES=(
   # issue 8: offscreen pictures (`buoyancy run --png`), the scene browser and its test under Xvfb
   libopengl-dev libgl-dev  # OpenGL 3.3 core entry points (GLVND libOpenGL) and GL/glcorearb.h
   libegl-dev libegl-mesa0 libgl1-mesa-dri  # EGL surfaceless + Mesa's llvmpipe: rendering without a display
-  libstb-dev               # stb_image_write (PNG) and stb_image (tests)
+  libstb-dev               # stb_image_write (PNG) and stb_image (tests, permeability textures in plugin/graph)
   libglfw3-dev             # the browser's window
   libimgui-dev             # Dear ImGui 1.86 with its GLFW/OpenGL 3 backends (the browser's panels)
   xvfb xauth               # xvfb-run: the browser test and scripts/pictures.sh without a display
@@ -21,7 +21,6 @@ PACKAGES=(
   opencl-c-headers         # OpenCL C headers
   opencl-clhpp-headers     # OpenCL C++ bindings <CL/opencl.hpp>
   pocl-opencl-icd          # PoCL: an OpenCL CPU device, so the OpenCL tests run without a GPU
-  libstb-dev               # stb_image / stb_image_write: permeability textures (plugin/graph/PermeabilityTexture.cpp)
 )
 # `scripts/install-deps.sh --extra`: also what scripts/ci-extra.sh needs (clang + libFuzzer runtime for
 # fuzz/, llvm-symbolizer for sanitizer stack traces). The default run does not need them.

@@ -44,7 +44,7 @@ done
 if cmake --build "$build" -j"${JOBS:-2}" --target buoyancy_browser >/dev/null 2>&1 && command -v xvfb-run >/dev/null; then
   echo "== browser"
   xvfb-run -a -s "-screen 0 1280x720x24" "$build/bin/buoyancy_browser" --scene "Boat holed at the bow" \
-    --frames 180 --screenshot "$out/browser.png"
+    --frames 300 --screenshot "$out/browser.png"
 else
   echo "skip the browser screenshot (no buoyancy_browser target or no xvfb-run)"
 fi

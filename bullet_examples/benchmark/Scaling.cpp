@@ -178,21 +178,26 @@ std::string scalingBreakdownMarkdown(const TriangleMesh& mesh, std::ostream& log
     const double nsV = timeIt([&] { water.velocities(x.data(), y.data(), z.data(), n, 1.0, u.data(), v.data(), w.data()); });
     const auto shape = btBuoyancyShape::create(mesh);
     const bool exact = shape->getMethod() == btBuoyancyMethod::ExactMesh;
-    const std::size_t hydro = exact ? mesh.vertices.size() : shape->getSamples().size();
-    const std::size_t drag = shape->getDragSamples().size();
-    // Hydrostatics queries heights at `hydro` points; drag re-queries heights (exact-mesh only) and velocities
-    // at `drag` points (btBuoyancyAction::updateAction).
-    const double heightQueries = double(hydro) + (exact ? double(drag) : 0.0);
-    const double waterNs = heightQueries * nsH + double(drag) * nsV;
-    char b[1024];
+    const btBuoyancySettings st;  // the library defaults, as in the run
+    const std::size_t points = exact ? mesh.vertices.size() : shape->getSamples().size();
+    const std::size_t fineDrag = shape->getDragSamples().size();
+    // With the default level of detail (DESIGN-NOTES 2.5) a body-substep on Gerstner waves queries the heights at
+    // the waterPatchNodes² grid nodes (vertices, samples and drag clusters are interpolated from it) and the
+    // velocities at waterVelocityProbes probes; without it (no-lod), one height query per vertex/sample and per
+    // fine drag sample, one velocity query per fine drag sample.
+    const double heightQueries = double(st.waterPatchNodes) * st.waterPatchNodes;
+    const double velocityQueries = double(st.waterVelocityProbes);
+    const double oldHeights = double(points) + double(fineDrag), oldVelocities = double(fineDrag);
+    char b[1200];
     std::snprintf(b, sizeof b,
                   "- Where the time goes (scaling model, %s): the 4-wave Gerstner sea costs %.0f ns per height query and "
-                  "%.0f ns per velocity query (batches of 16384, one thread). Per body-substep the default makes "
-                  "%.0f height queries (%zu %s%s) and %zu velocity queries (drag samples): ≈ %.0f µs of water "
-                  "queries alone, against a budget of ≈ 7 µs per body-substep for P3.\n",
-                  btBuoyancyMethodName(shape->getMethod()), nsH, nsV, heightQueries, hydro,
-                  exact ? "mesh vertices" : "samples", exact ? (" + " + std::to_string(drag) + " drag samples").c_str() : "",
-                  drag, waterNs / 1000.0);
+                  "%.0f ns per velocity query (batches of 16384, one thread). Per body-substep the default level of detail "
+                  "makes %.0f height queries (a %d×%d patch) and %.0f velocity queries (probes): ≈ %.0f µs of water queries; "
+                  "without it (no-lod rows) %.0f height queries (%zu %s + %zu drag samples) and %.0f velocity queries: "
+                  "≈ %.0f µs. Budget for P3: ≈ 7 µs of buoyancy per body-substep on 2 cores.\n",
+                  btBuoyancyMethodName(shape->getMethod()), nsH, nsV, heightQueries, st.waterPatchNodes, st.waterPatchNodes,
+                  velocityQueries, (heightQueries * nsH + velocityQueries * nsV) / 1000.0, oldHeights, points,
+                  exact ? "mesh vertices" : "samples", fineDrag, oldVelocities, (oldHeights * nsH + oldVelocities * nsV) / 1000.0);
     log << "  " << b;
     return b;
 }

@@ -356,7 +356,7 @@ int runBrowser(const BrowserOptions& options) {
             ImGui_ImplGlfw_NewFrame();
             ImGui::NewFrame();
             ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Once);
-            ImGui::SetNextWindowSize(ImVec2(330, float(options.height) - 16), ImGuiCond_Once);
+            ImGui::SetNextWindowSize(ImVec2(380, float(options.height) - 16), ImGuiCond_Once);
             ImGui::Begin("BulletBuoyancy");
             sceneList(b);
             controls(b);

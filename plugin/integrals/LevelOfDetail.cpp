@@ -24,10 +24,12 @@ constexpr MeasuredError kMeasured[] = {
 };
 /// Exact-mesh is exact to rounding in flat water (measured ≤ 6e-12 %).
 constexpr double kExactMeshErrorPct = 1e-10;
-/// Cost model, ns per body-substep (hydrostatics; same run): per clipped triangle and per surface sample,
-/// and the samples an N² texture yields (0.49–0.93 N² measured; the middle is used).
-constexpr double kNsPerTriangle = 12.0;
-constexpr double kNsPerSample = 4.0;
+/// Cost model, ns per body-substep (one btBuoyancyAction substep, flat water, drag on; docs/benchmarks run of
+/// 2026-11-22 on a loaded 2-core machine): ≈ 15 ns per clipped triangle (sphere 3968: 60 µs, torus 4096: 71 µs)
+/// and ≈ 13 ns per surface sample at 64²–256² (more above: cache misses), and the samples an N² texture yields
+/// (0.49–0.93 N² measured; the middle is used). Only the ratio of the two matters for the pick.
+constexpr double kNsPerTriangle = 15.0;
+constexpr double kNsPerSample = 13.0;
 constexpr double kSamplesPerTexel = 0.7;
 
 }  // namespace

@@ -69,14 +69,14 @@ TEST_CASE("buoyancy run --size rejects bad sizes", "[examples]") {
 TEST_CASE("the browser starts under Xvfb, renders a scene and its screenshot shows water and the body", "[examples][slow]") {
     const fs::path d = scratch("browser");
     const fs::path png = d / "shot.png";
-    const std::string cmd = std::string(BUOYANCY_XVFB_RUN) + " -a -s '-screen 0 800x450x24' " + BUOYANCY_BROWSER_PATH +
-                            " --scene 'Buoy in waves' --size 640 360 --frames 8 --screenshot " + png.string() +
+    const std::string cmd = std::string(BUOYANCY_XVFB_RUN) + " -a -s '-screen 0 1024x480x24' " + BUOYANCY_BROWSER_PATH +
+                            " --scene 'Buoy in waves' --size 960 400 --frames 8 --screenshot " + png.string() +
                             " >/dev/null 2>&1";
     REQUIRE(shell(cmd) == 0);
     PictureStats s;
-    REQUIRE(buoyancy::test::analysePicture(png.string(), s, 240));  // right of the panel: the 3D view
-    CHECK(s.width == 640);
-    CHECK(s.height == 360);
+    REQUIRE(buoyancy::test::analysePicture(png.string(), s, 400));  // right of the 380-pixel panel: the 3D view
+    CHECK(s.width == 960);
+    CHECK(s.height == 400);
     INFO("water " << s.waterLower << ", warm " << s.warm << ", colours " << s.distinctColours);
     CHECK(s.waterLower > 0.4);
     CHECK(s.warm > 30);

@@ -173,3 +173,35 @@ TEST_CASE("clippedHydrostatics with a water patch: exact on quadratic-free (line
     CHECK(std::abs(lod.submerged_volume - exact.submerged_volume) / V < 1e-4);
     CHECK((lod.centre_of_buoyancy - exact.centre_of_buoyancy).norm() < 1e-4);
 }
+
+#include "bullet/btBuoyancySettings.h"
+
+#include <stdexcept>
+#include <string>
+
+TEST_CASE("Level-of-detail settings: bad values are refused with the field's name", "[integrals][lod]") {
+    auto message = [](const btBuoyancySettings& s) {
+        try {
+            s.validate();
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    btBuoyancySettings s;
+    CHECK(message(s).empty());
+    s.dragClusters = -1;
+    CHECK(message(s).find("dragClusters") != std::string::npos);
+    s = btBuoyancySettings();
+    s.waterPatchNodes = 3;
+    CHECK(message(s).find("waterPatchNodes") != std::string::npos);
+    s.waterPatchNodes = 0;  // exact queries: valid
+    CHECK(message(s).empty());
+    s.waterVelocityProbes = -5;
+    CHECK(message(s).find("waterVelocityProbes") != std::string::npos);
+    s = btBuoyancySettings();
+    s.errorBudget = -0.1;
+    CHECK(message(s).find("errorBudget") != std::string::npos);
+    s.errorBudget = std::nan("");
+    CHECK(message(s).find("errorBudget") != std::string::npos);
+}
