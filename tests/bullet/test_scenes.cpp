@@ -1,6 +1,7 @@
 // Every shipped scene (bullet_examples/scenes/*.json) through the runner with its expected outcome against
 // an analytic oracle; the default primitive resolution against the analytic volumes; the substep count not
 // changing a dynamic motion. (hard_cases.json is covered by test_run_command.cpp.)
+#include <unistd.h>
 #include "oracles/BulletTestWorld.h"
 #include "cli/RunCommand.h"
 #include "cli/SceneFile.h"
@@ -214,7 +215,7 @@ std::map<std::string, double> defaultPrimitiveVolumes() {
         R"({"bodies": [{"shape": {"type": "sphere", "radius": 1}, "density": 1000}]})", "default.json", ".");
     const int res = scene.bodies.at(0).shape.resolution;
     std::printf("default primitive resolution: %d\n", res);
-    const auto dir = std::filesystem::temp_directory_path() / "buoyancy_scene_test_resolution";
+    const auto dir = std::filesystem::temp_directory_path() / ("buoyancy_scene_test_resolution_" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     {

@@ -1,6 +1,7 @@
 // Flooding coupled to Bullet (issue 6): a holed hull sinks iff its dry mass exceeds ρ_w V_material
 // (DESIGN-NOTES 5), floats awash otherwise; a body full of water tumbles without NaN; the paper's
 // Figs. 12–13 (bow vs stern first) and a sealed compartment, from the shipped scene files.
+#include <unistd.h>
 #include <catch2/catch.hpp>
 
 #include "bullet/btBulletConvert.h"
@@ -210,7 +211,7 @@ TEST_CASE("automatic graph of a box: capacities, centroids and touching clusters
 
 TEST_CASE("scenes: bow-holed boat sinks bow first, stern-holed stern first, sealed compartment floats", "[graph][cli][slow]") {
     const std::string dir = std::string(BUOYANCY_SOURCE_DIR) + "/bullet_examples/scenes/";
-    const auto out = std::filesystem::temp_directory_path() / "buoyancy_graph_scenes";
+    const auto out = std::filesystem::temp_directory_path() / ("buoyancy_graph_scenes_" + std::to_string(::getpid()));
     const Eigen::Vector3d bow(2, 0, 0), stern(-2, 0, 0);
     auto run = [&](const std::string& name, double duration) {
         const std::string o = (out / name).string();
@@ -287,7 +288,7 @@ TEST_CASE("scene keys water_graph and permeability: errors name the key", "[grap
 }
 
 TEST_CASE("an automatic graph floods a holed boat through the runner", "[graph][cli]") {
-    const auto dir = std::filesystem::temp_directory_path() / "buoyancy_graph_auto";
+    const auto dir = std::filesystem::temp_directory_path() / ("buoyancy_graph_auto_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const std::string model = std::string(BUOYANCY_SOURCE_DIR) + "/bullet_examples/models/boat_hull.obj";
     {
