@@ -38,6 +38,13 @@ if [ "${1:-}" = "--bench" ]; then
     python3-matplotlib     # docs/benchmarks/*.png (scripts/bench_plots.py)
   )
 fi
+# `scripts/install-deps.sh --cgal`: also CGAL 5.5 for the optional, GPL-licensed SDF water graph
+# (cmake -DBULLET_BUOYANCY_CGAL=ON, plugin/graph/cgal/, third_party_notes/cgal.md). Never in the default build.
+if [ "${1:-}" = "--cgal" ]; then
+  PACKAGES+=(
+    libcgal-dev            # CGAL 5.5 headers (Surface_mesh_segmentation; pulls Boost, GMP, MPFR)
+  )
+fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,6 +1,10 @@
 #include "cli/SceneGraph.h"
 #include "cli/SceneJsonReader.h"
 
+#ifdef BULLET_BUOYANCY_HAS_CGAL
+#include "graph/cgal/SdfWaterGraph.h"
+#endif
+
 #include <nlohmann/json.hpp>
 
 #include <Eigen/Geometry>
@@ -56,8 +60,21 @@ void readGraph(const R& r, const json& g, const std::string& key, SceneFlooding&
         const json& a = g["auto"];
         const std::string ak = key + ".auto";
         r.requireObject(a, ak);
-        r.allowKeys(a, ak, {"nodes", "resolution", "fill"});
+        r.allowKeys(a, ak, {"nodes", "resolution", "fill", "method"});
         out.automatic = true;
+        if (a.contains("method")) {
+            const std::string v = r.string(a["method"], ak + ".method");
+            if (v == "sdf") {
+#ifdef BULLET_BUOYANCY_HAS_CGAL
+                out.sdf = true;
+                if (a.contains("nodes")) r.integer(a["nodes"], ak + ".nodes", 1, 64);  // SDF clusters: 1..64
+#else
+                r.fail(ak + ".method", "\"sdf\" needs CGAL: built without CGAL (BULLET_BUOYANCY_CGAL=OFF)");
+#endif
+            } else if (v != "voxels") {
+                r.fail(ak + ".method", "unknown value \"" + v + "\" (voxels or sdf)");
+            }
+        }
         if (a.contains("nodes")) out.autoSettings.nodes = r.integer(a["nodes"], ak + ".nodes", 1, 256);
         if (a.contains("resolution")) out.autoSettings.resolution = r.integer(a["resolution"], ak + ".resolution", 4, 256);
         if (a.contains("fill")) out.autoSettings.fill = r.number(a["fill"], ak + ".fill", 0, 1, true);
@@ -271,7 +288,21 @@ SceneFlooding readSceneFlooding(const json& body, const std::string& key, const 
 
 WaterGraph buildSceneWaterGraph(const SceneFlooding& flooding, const TriangleMesh& mesh) {
     if (!flooding.automatic) return flooding.graph;
+#ifdef BULLET_BUOYANCY_HAS_CGAL
+    WaterGraph g;
+    if (flooding.sdf) {
+        SdfWaterGraphSettings sdf;  // the paper's method (issue 6): k SDF clusters, voxels for the capacities
+        sdf.nodes = flooding.autoSettings.nodes;
+        sdf.resolution = flooding.autoSettings.resolution;
+        sdf.fill = flooding.autoSettings.fill;
+        sdf.seed = flooding.autoSettings.seed;
+        g = sdfWaterGraph(mesh, sdf);
+    } else {
+        g = autoWaterGraph(mesh, flooding.autoSettings);
+    }
+#else
     WaterGraph g = autoWaterGraph(mesh, flooding.autoSettings);
+#endif
     g.ingress = flooding.graph.ingress;
     g.flow = flooding.graph.flow;
     g.dischargeCoefficient = flooding.graph.dischargeCoefficient;

@@ -51,6 +51,7 @@ struct SceneFlooding {
     bool automatic = false;         ///< "water_graph": {"auto": {...}}: built from the mesh at run time
     WaterGraph graph;               ///< the hand-made graph (or the parameters of the automatic one)
     AutoWaterGraphSettings autoSettings; ///< automatic graph settings
+    bool sdf = false;               ///< "auto": {"method": "sdf"}: CGAL's SDF segmentation (BULLET_BUOYANCY_CGAL=ON only)
     std::vector<PermeabilityRegion> regions;  ///< "permeability": {"regions": [...]}; node resolved below
     std::vector<std::string> regionNodes;     ///< #regions node name each region feeds ("" = nearest node)
     bool hasTexture = false;                  ///< "permeability": {"texture": ...}

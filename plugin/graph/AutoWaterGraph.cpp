@@ -8,6 +8,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace buoyancy {
 
@@ -17,8 +18,8 @@ void AutoWaterGraphSettings::validate() const {
     if (!std::isfinite(fill) || !(fill > 0) || fill > 1) throw std::invalid_argument("auto.fill: must be in (0, 1]");
 }
 
-WaterGraph autoWaterGraph(const TriangleMesh& mesh, const AutoWaterGraphSettings& settings) {
-    settings.validate();
+InteriorVoxels voxeliseInterior(const TriangleMesh& mesh, int resolution) {
+    if (resolution < 1) throw std::invalid_argument("voxeliseInterior: resolution must be >= 1");
     if (mesh.triangleCount() == 0) throw std::invalid_argument("mesh: no triangles");
     Eigen::Vector3d lo = mesh.vertices.front(), hi = lo;
     for (const Eigen::Vector3d& v : mesh.vertices) {
@@ -26,7 +27,7 @@ WaterGraph autoWaterGraph(const TriangleMesh& mesh, const AutoWaterGraphSettings
         hi = hi.cwiseMax(v);
     }
     const Eigen::Vector3d ext = hi - lo;
-    const double h = ext.maxCoeff() / settings.resolution;
+    const double h = ext.maxCoeff() / resolution;
     if (!(h > 0) || !std::isfinite(h)) throw std::invalid_argument("mesh: empty bounding box");
     int dims[3];
     for (int k = 0; k < 3; ++k) dims[k] = std::max(1, int(std::ceil(ext[k] / h - 1e-9)));
@@ -63,6 +64,24 @@ WaterGraph autoWaterGraph(const TriangleMesh& mesh, const AutoWaterGraphSettings
             }
         }
     }
+    InteriorVoxels out;
+    out.lo = lo;
+    out.h = h;
+    out.nx = nx;
+    out.ny = ny;
+    out.nz = nz;
+    out.inside = std::move(inside);
+    return out;
+}
+
+WaterGraph autoWaterGraph(const TriangleMesh& mesh, const AutoWaterGraphSettings& settings) {
+    settings.validate();
+    const InteriorVoxels vox = voxeliseInterior(mesh, settings.resolution);
+    const Eigen::Vector3d lo = vox.lo;
+    const double h = vox.h;
+    const int nx = vox.nx, ny = vox.ny, nz = vox.nz;
+    auto index = [&](int i, int j, int k) { return vox.index(i, j, k); };
+    const std::vector<unsigned char>& inside = vox.inside;
     std::vector<Eigen::Vector3d> centres;
     std::vector<std::size_t> cellOf;
     for (int k = 0; k < nz; ++k)
