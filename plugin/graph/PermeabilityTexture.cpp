@@ -8,6 +8,13 @@
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_NO_HDR
 #define STBI_NO_LINEAR
+// Only the formats users paint damage maps in. stb's PNM reader overflows a signed int on huge header
+// numbers (found by fuzz/fuzz_permeability_image, UBSan in stbi__pnm_getinteger); PSD, PIC and GIF are
+// left out with it: such a file is "not an image" (docs/bad-input.md).
+#define STBI_ONLY_PNG
+#define STBI_ONLY_JPEG
+#define STBI_ONLY_BMP
+#define STBI_ONLY_TGA
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #if defined(__GNUC__)
@@ -117,7 +124,7 @@ PermeabilityImage decodePermeabilityImage(const unsigned char* data, std::size_t
         if (why && std::string(why) == "0-pixel image")
             throw std::invalid_argument(name + ": the image has zero size (0 texels wide or high)");
         throw std::invalid_argument(name + ": not an image stb_image can read (" + (why ? why : "unknown format") +
-                                    "); expected PNG, JPEG, BMP, TGA, GIF, PSD or PNM");
+                                    "); expected PNG, JPEG, BMP or TGA");
     }
     if (w <= 0 || h <= 0)
         throw std::invalid_argument(name + ": the image has zero size (" + std::to_string(w) + "x" + std::to_string(h) + ")");

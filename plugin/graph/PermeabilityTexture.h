@@ -15,7 +15,7 @@
 /// (permeabilityUvs(mesh, N), then writeAtlasObj for the mesh with those UVs and writeAtlasTemplatePng for a
 /// template image) and paint the texture on it.
 ///
-/// Images are decoded with stb_image (libstb-dev, public domain / MIT): PNG, JPEG, BMP, TGA, GIF, PSD, PNM.
+/// Images are decoded with stb_image (libstb-dev, public domain / MIT): PNG, JPEG, BMP, TGA.
 
 #include "bake/SurfaceSamples.h"
 #include "mesh/TriangleMesh.h"

@@ -51,13 +51,13 @@ bool finite(const cli::SceneWorld& w) {
 
 /// Angle between the body's mesh +y axis and world +y, degrees.
 double tiltDeg(const btBuoyantBody& b) {
-    const btMatrix3x3& m = b.getMeshWorldTransform().getBasis();
+    const btMatrix3x3 m = b.getMeshWorldTransform().getBasis();
     return std::acos(std::clamp(double(m[1][1]), -1.0, 1.0)) * 180.0 / M_PI;
 }
 
 /// Pitch of the mesh +x axis above the horizontal, degrees (+: bow up for the boat hull, whose bow is +x).
 double pitchDeg(const btBuoyantBody& b) {
-    const btMatrix3x3& m = b.getMeshWorldTransform().getBasis();
+    const btMatrix3x3 m = b.getMeshWorldTransform().getBasis();
     return std::asin(std::clamp(double(m[1][0]), -1.0, 1.0)) * 180.0 / M_PI;
 }
 

@@ -123,6 +123,11 @@ TEST_CASE("permeability image errors name the file: missing, empty, not an image
     { std::ofstream(dir / "text.png") << "this is not an image\n"; }
     CHECK_THAT(errorOf([&] { loadPermeabilityImage((dir / "text.png").string()); }),
                Catch::Contains("text.png") && Catch::Contains("not an image"));
+    // Fuzz regression (fuzz_permeability_image): a PNM header with a number that overflows stb's int parser
+    // (UB inside stb's PNM reader). PNM is not a permeability format: a clear "not an image", no UB.
+    { std::ofstream(dir / "huge.ppm", std::ios::binary) << "P6\n4666666666666 2\n255\n"; }
+    CHECK_THAT(errorOf([&] { loadPermeabilityImage((dir / "huge.ppm").string()); }),
+               Catch::Contains("huge.ppm") && Catch::Contains("not an image"));
     // A PNG whose header says 0 × 1 texels (signature, IHDR; stb does not check CRCs).
     {
         const unsigned char png[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A, 0, 0, 0, 13, 'I', 'H', 'D', 'R',
