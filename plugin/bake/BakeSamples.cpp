@@ -97,19 +97,6 @@ void bakeExact(const TriangleMap& m, std::uint32_t t, int N, TexelAccumulator& a
     });
 }
 
-/// Edge function of edge a → b at p, computed from the lexicographically smaller endpoint so that the
-/// two triangles sharing an edge get exactly opposite values (a consistent fill rule).
-inline double edgeFunction(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
-    const bool forward = a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-    return forward ? cross2(a, b, p) : -cross2(b, a, p);
-}
-
-/// Fill rule for centres exactly on an edge: of the directions d and −d, exactly one qualifies.
-inline bool ownsEdge(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    const Eigen::Vector2d d = b - a;
-    return d.y() < 0 || (d.y() == 0 && d.x() > 0);
-}
-
 /// Texel-centre rasterisation (the paper, DESIGN-NOTES 1.1): a texel whose centre is inside the triangle
 /// gets A_tri·(texel UV area / triangle UV area) at the 3D point of its centre.
 void bakeTexelCentre(const TriangleMap& m, std::uint32_t t, int N, TexelAccumulator& acc) {

@@ -22,17 +22,6 @@ struct Piece {
     double weight, beta1, beta2, restArea;
 };
 
-/// Same fill rule as the texel-centre baker (BakeSamples.cpp): edge function from the lexicographically
-/// smaller endpoint, and ownership of centres exactly on an edge.
-inline double edgeFunction(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
-    const bool forward = a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-    return forward ? cross2(a, b, p) : -cross2(b, a, p);
-}
-inline bool ownsEdge(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    const Eigen::Vector2d d = b - a;
-    return d.y() < 0 || (d.y() == 0 && d.x() > 0);
-}
-
 }  // namespace
 
 RebakeMap buildRebakeMap(const TriangleMesh& mesh, const std::vector<Eigen::Vector2d>& cornerUvs, int textureSize,

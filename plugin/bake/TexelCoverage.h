@@ -48,4 +48,18 @@ void forEachTexelPiece(const Eigen::Vector2d& s0, const Eigen::Vector2d& s1, con
     }
 }
 
+/// Shared by the texel-centre baker (BakeSamples.cpp) and the deformable re-bake map (DeformableRebake.cpp).
+/// Edge function of edge a → b at p, computed from the lexicographically smaller endpoint so that the
+/// two triangles sharing an edge get exactly opposite values (a consistent fill rule).
+inline double edgeFunction(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
+    const bool forward = a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+    return forward ? cross2(a, b, p) : -cross2(b, a, p);
+}
+
+/// Fill rule for centres exactly on an edge: of the directions d and −d, exactly one qualifies.
+inline bool ownsEdge(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    const Eigen::Vector2d d = b - a;
+    return d.y() < 0 || (d.y() == 0 && d.x() > 0);
+}
+
 }  // namespace buoyancy
