@@ -10,6 +10,7 @@
 #include "integrals/Hydrostatics.h"
 #include "integrals/WaterPatch.h"
 #include "water/btGerstnerWaterSurface.h"
+#include "water/btWaterSurface.h"
 
 #include <algorithm>
 #include <chrono>
@@ -111,6 +112,64 @@ std::string runLodStudy(const std::vector<BenchShape>& shapes, const std::vector
             md << " (errors against the exact-query clip at the same wave field, `waves_lod.csv`).\n";
             log << "  waves LOD " << s.name << " done\n";
         }
+        std::fclose(f);
+    }
+    // ---- Exact-mesh: the moment tree against clipping every triangle (DESIGN-NOTES 2.5) ----------------------
+    {
+        std::FILE* f = openCsv(outDir + "/mesh_tree.csv",
+                               "shape,triangles,water,pose,ns_clip_all,ns_tree,volume_difference_pct,cob_difference_pct\n");
+        const btGerstnerWaterSurface sea(p3Sea());
+        const btFlatWaterSurface flat(0.0);
+        md << "- Exact-mesh through the moment tree (`mesh_tree.csv`; one hydrostatic evaluation, the same poses as "
+              "speed_vs_error in flat water and at 3 sea states of the P3 sea with the default 8×8 patch; mean time of "
+              "clipping every triangle / the tree, and the worst difference between them):";
+        for (const BenchShape& s : shapes) {
+            btBuoyancySettings st;
+            st.method = btBuoyancyMethod::ExactMesh;
+            const auto shape = btBuoyancyShape::create(s.mesh, st);
+            const double V = shape->getVolume(), diag = boundingBoxDiagonal(s.mesh);
+            const std::vector<BenchPose> poses = benchPoses(s.mesh, quick ? std::vector<double>{0.5} : std::vector<double>{0.1, 0.3, 0.5, 0.7, 0.9},
+                                                            quick ? std::vector<double>{0} : std::vector<double>{0, 20, 45});
+            double sum[2][2] = {{0, 0}, {0, 0}}, worst[2] = {0, 0};  // [flat, waves][clip, tree]
+            int count[2] = {0, 0};
+            int k = 0;
+            for (const BenchPose& p : poses)
+                for (int waves = 0; waves < 2; ++waves) {
+                    Eigen::Isometry3d pose = p.pose;
+                    const double t = 2.9 * (k % 3);
+                    const double x = waves ? 5.3 * (k + 1) : 0.0, z = waves ? -3.7 * (k + 1) : 0.0;
+                    if (waves) pose.pretranslate(Eigen::Vector3d(x, sea.height(x, z, t), z));
+                    ++k;
+                    const btWaterSurface& water = waves ? static_cast<const btWaterSurface&>(sea) : flat;
+                    const Eigen::Vector3d ref = pose * shape->getUnitSolid().centre;
+                    const Eigen::Vector3d bc = pose * shape->getBoundsCentre();
+                    WaterPatch patch;
+                    btWaterQueryCache cache;
+                    if (waves) patch.build(sea, bc.x(), bc.z(), shape->getBoundsRadius(), t, 8, cache);
+                    const WaterPatch* pp = waves ? &patch : nullptr;
+                    HydrostaticsResult a, b;
+                    const double nsClip = nsPerCall([&] { a = clippedHydrostatics(shape->getMesh(), pose, water, t, kRho, kG, ref, pp); }, quick ? 3 : 10);
+                    const double nsTree = nsPerCall([&] {
+                        b = treeHydrostatics(shape->getMomentTree(), shape->getMesh(), pose, water, t, kRho, kG, ref, pp);
+                    }, quick ? 3 : 10);
+                    const double dV = 100.0 * std::abs(a.submerged_volume - b.submerged_volume) / V;
+                    const double dC = a.submerged_volume > 1e-3 * V ? 100.0 * (a.centre_of_buoyancy - b.centre_of_buoyancy).norm() / diag : 0.0;
+                    std::fprintf(f, "%s,%zu,%s,%s,%.0f,%.0f,%.3g,%.3g\n", s.name.c_str(), s.mesh.triangleCount(),
+                                 waves ? "p3-sea-patch8" : "flat", p.id.c_str(), nsClip, nsTree, dV, dC);
+                    sum[waves][0] += nsClip;
+                    sum[waves][1] += nsTree;
+                    worst[waves] = std::max(worst[waves], dV);
+                    ++count[waves];
+                }
+            char b[300];
+            std::snprintf(b, sizeof b, " `%s` (%zu triangles): flat %.1f → %.1f µs (%.1f× faster, volume difference ≤ %.1g %%), "
+                          "waves %.1f → %.1f µs (%.1f×, ≤ %.2g %%);", s.name.c_str(), s.mesh.triangleCount(),
+                          sum[0][0] / count[0] / 1000.0, sum[0][1] / count[0] / 1000.0, sum[0][0] / sum[0][1], worst[0],
+                          sum[1][0] / count[1] / 1000.0, sum[1][1] / count[1] / 1000.0, sum[1][0] / sum[1][1], worst[1]);
+            md << b;
+            log << "  mesh tree " << s.name << " done\n";
+        }
+        md << "\n";
         std::fclose(f);
     }
     // ---- Drag: clusters against every fine sample ------------------------------------------------------------

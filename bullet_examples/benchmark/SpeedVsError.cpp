@@ -136,7 +136,7 @@ std::vector<SpeedErrorRow> runSpeedVsError(const std::vector<BenchShape>& shapes
             const std::size_t first = rows.size();
             for (const PoseReference& pr : sr.poses) {
                 const HydrostaticsResult h =
-                    mesh ? clippedHydrostatics(shape->getMesh(), pr.pose.pose, water, 0.0, kRho, kG, pr.ref)
+                    mesh ? treeHydrostatics(shape->getMomentTree(), shape->getMesh(), pr.pose.pose, water, 0.0, kRho, kG, pr.ref)
                          : sampledHydrostatics(shape->getSamples(), pr.pose.pose, water, 0.0, kRho, kG, pr.ref, ws);
                 SpeedErrorRow row = base(label, texture, variant, samples);
                 row.pose = pr.pose.id;

@@ -135,7 +135,8 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     const std::string uvSource = shape->usesGeneratedUvs() || !meshHadUvs ? "generated" : "model";
     const std::size_t sampleCount = shape->getSamples().size();
     if (method == btBuoyancyMethod::ExactMesh) {
-        wet = clippedHydrostatics(shape->getMesh(), pose, water, 0.0, o.water_density, o.gravity, pose * dry.centre);
+        wet = treeHydrostatics(shape->getMomentTree(), shape->getMesh(), pose, water, 0.0, o.water_density, o.gravity,
+                               pose * dry.centre);  // as the action computes it (DESIGN-NOTES 2.5)
     } else {
         SampleWorkspace ws;
         wet = sampledHydrostatics(shape->getSamples(), pose, water, 0.0, o.water_density, o.gravity,

@@ -299,7 +299,8 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
             if (flat && bc.y() + br <= flatH && !m_deformable) {
                 h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (DESIGN-NOTES 2.5)
             } else if (method == btBuoyancyMethod::ExactMesh) {
-                h = buoyancy::clippedHydrostatics(m_shape->getMesh(), pose, *water, time, rho, g, com, patch);
+                h = buoyancy::treeHydrostatics(m_shape->getMomentTree(), m_shape->getMesh(), pose, *water, time, rho, g,
+                                               com, patch);
             } else {
                 btBuoyancyDeviceBackend* dev = m_world->getDeviceBackend();  // [issue 7] batched on a device
                 if (dev && dev->hydrostatics(*this, pose, com, h))

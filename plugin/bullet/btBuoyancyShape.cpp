@@ -93,6 +93,7 @@ std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::create(buoyancy::Triangl
     shape->m_faceSamples = faceSamples(m, std::max(2.0 * shape->m_boundsRadius / 16.0, 1e-9));
     if (shape->m_method == btBuoyancyMethod::ExactMesh) {
         shape->m_unitSolid = buoyancy::polyhedronMassProperties(m, 1.0);
+        shape->m_tree = buoyancy::buildMeshMomentTree(m);  // closed-form wet nodes (DESIGN-NOTES 2.5)
         // Shell from point masses on the sub-triangles (their own small inertia neglected).
         shape->m_unitShell = buoyancy::shellMassProperties(shape->m_faceSamples, 1.0, 1.0);
     } else {

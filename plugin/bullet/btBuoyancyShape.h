@@ -7,6 +7,7 @@
 #include "bake/SurfaceSamples.h"
 #include "bullet/btBuoyancySettings.h"
 #include "integrals/MassProperties.h"
+#include "integrals/MeshMomentTree.h"
 #include "mesh/TriangleMesh.h"
 
 #include <Eigen/Core>
@@ -30,6 +31,8 @@ public:
     btBuoyancyMethod getMethod() const { return m_method; }
     /// The mesh, body (mesh) frame, m.
     const buoyancy::TriangleMesh& getMesh() const { return m_mesh; }
+    /// Moment tree of the mesh for the exact-mesh method (DESIGN-NOTES 2.5; empty for sampled methods).
+    const buoyancy::MeshMomentTree& getMomentTree() const { return m_tree; }
     /// Hydrostatic samples (empty for ExactMesh).
     const buoyancy::SurfaceSamples& getSamples() const { return m_samples; }
     /// Samples used for drag: the hydrostatic samples, or one per triangle (centroid, area vector) for ExactMesh.
@@ -60,6 +63,7 @@ private:
     btBuoyancyMethod m_method = btBuoyancyMethod::ExactMesh;
     buoyancy::TriangleMesh m_mesh;
     buoyancy::SurfaceSamples m_samples;
+    buoyancy::MeshMomentTree m_tree;
     buoyancy::SurfaceSamples m_faceSamples;
     buoyancy::MassProperties m_unitSolid;
     buoyancy::MassProperties m_unitShell;

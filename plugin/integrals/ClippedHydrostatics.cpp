@@ -7,6 +7,7 @@
 
 #include "integrals/Hydrostatics.h"
 #include "integrals/WaterPatch.h"
+#include "integrals/WetTriangleIntegrals.h"
 #include "water/btWaterSurface.h"
 
 #include <algorithm>
@@ -23,53 +24,6 @@ namespace {
 struct ClipScratch {
     std::vector<Eigen::Vector3d> world;
     std::vector<double> x, z, f;
-};
-
-/// A vertex of a clipped piece, relative to the reference point: position p' and water height f'.
-struct PieceVertex {
-    Eigen::Vector3d p;
-    double f;
-};
-
-/// Running (plain double) integrals: V, ∫p', Σ d A (force / ρg), Σ ∫ d p' × n (torque / ρg), Σ A^y, area.
-struct Integrals {
-    double V = 0;
-    Eigen::Vector3d first = Eigen::Vector3d::Zero();
-    Eigen::Vector3d dA = Eigen::Vector3d::Zero();
-    Eigen::Vector3d dpxA = Eigen::Vector3d::Zero();
-    double Ay = 0;
-    double area = 0;
-
-    /// Exact integrals over the flat triangle (a, b, c), wetted everywhere (y ≤ f), f linear over it.
-    void addTriangle(const PieceVertex& a, const PieceVertex& b, const PieceVertex& c) {
-        const Eigen::Vector3d A = 0.5 * (b.p - a.p).cross(c.p - a.p);  // area × outward normal
-        // Edge midpoints: the quadrature ∫ φ dS = |S|/3 Σ φ(m_k) is exact for φ of degree ≤ 2.
-        // Each field is (polynomial) × n, so ∫ φ n dS = A/3 Σ φ(m_k).
-        const PieceVertex* v[3] = {&a, &b, &c};
-        double sd = 0, sdy = 0;  // Σ d, Σ d (y' + f')/2
-        Eigen::Vector3d sdp = Eigen::Vector3d::Zero();  // Σ d p'
-        for (int k = 0; k < 3; ++k) {
-            const PieceVertex& u = *v[k];
-            const PieceVertex& w = *v[(k + 1) % 3];
-            const Eigen::Vector3d m = 0.5 * (u.p + w.p);
-            const double fm = 0.5 * (u.f + w.f);
-            const double d = m.y() - fm;  // y − f ≤ 0
-            sd += d;
-            sdy += d * 0.5 * (m.y() + fm);
-            sdp += d * m;
-        }
-        sd /= 3.0;
-        sdy /= 3.0;
-        sdp /= 3.0;
-        V += A.y() * sd;            // ∫ (y − f) n_y
-        first.x() += A.y() * sdp.x();  // ∫ x'(y − f) n_y
-        first.y() += A.y() * sdy;      // ∫ (y'² − f'²)/2 n_y
-        first.z() += A.y() * sdp.z();  // ∫ z'(y − f) n_y
-        dA += sd * A;               // ∫ (y − f) n     → F = ρg ∫ (y − f) n = −∫ P n
-        dpxA += sdp.cross(A);       // ∫ (y − f) p' × n → τ = ρg ∫ (y − f) p' × n
-        Ay += A.y();
-        area += A.norm();
-    }
 };
 
 }  // namespace
@@ -131,11 +85,10 @@ HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Is
                                      std::to_string(s.x[i]) + ", z=" + std::to_string(s.z[i]));
 
     const Eigen::Vector3d& r = torqueReference;
-    Integrals I;
+    WetIntegrals I;
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const Eigen::Vector3i& tri = mesh.triangles[t];
         PieceVertex in[3];
-        double d[3];
         for (int k = 0; k < 3; ++k) {
             const int idx = tri[k];
             if (idx < 0 || std::size_t(idx) >= nv)
@@ -143,28 +96,8 @@ HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Is
                                             " has vertex index " + std::to_string(idx) + " out of range");
             in[k].p = s.world[idx] - r;
             in[k].f = s.f[idx] - r.y();
-            d[k] = in[k].p.y() - in[k].f;
         }
-        if (d[0] >= 0 && d[1] >= 0 && d[2] >= 0) continue;  // dry (or touching)
-        if (d[0] <= 0 && d[1] <= 0 && d[2] <= 0) {
-            I.addTriangle(in[0], in[1], in[2]);
-            continue;
-        }
-        // Sutherland–Hodgman against d = y − f ≤ 0, f linear over the triangle (plane through the corners).
-        PieceVertex poly[4];
-        int n = 0;
-        for (int k = 0; k < 3; ++k) {
-            const int k1 = (k + 1) % 3;
-            if (d[k] <= 0) poly[n++] = in[k];
-            if ((d[k] < 0 && d[k1] > 0) || (d[k] > 0 && d[k1] < 0)) {
-                const double u = d[k] / (d[k] - d[k1]);
-                PieceVertex x;
-                x.p = in[k].p + u * (in[k1].p - in[k].p);
-                x.f = in[k].f + u * (in[k1].f - in[k].f);
-                poly[n++] = x;
-            }
-        }
-        for (int k = 1; k + 1 < n; ++k) I.addTriangle(poly[0], poly[k], poly[k + 1]);
+        I.addClippedTriangle(in);  // Sutherland–Hodgman against y − f ≤ 0 (WetTriangleIntegrals.h)
     }
 
     const double rg = fluidDensity * gravity;

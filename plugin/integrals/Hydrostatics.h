@@ -15,6 +15,7 @@ struct btWaterQueryCache;
 namespace buoyancy {
 
 class WaterPatch;
+struct MeshMomentTree;
 
 /// Result of one hydrostatic evaluation, world frame.
 struct HydrostaticsResult {
@@ -71,5 +72,17 @@ HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Is
                                        const btWaterSurface& water, double time, double fluidDensity,
                                        double gravity, const Eigen::Vector3d& torqueReference,
                                        const WaterPatch* patch);
+
+/// The exact-mesh method through the moment tree (MeshMomentTree.h, DESIGN-NOTES 2.5): nodes entirely under water
+/// add closed-form terms, nodes above are skipped, the triangles of straddling leaves are clipped as in
+/// clippedHydrostatics. Flat water: the same result as clippedHydrostatics to rounding. Waves given by `patch`: the
+/// water over a submerged node or a straddling leaf is the patch's second-order expansion about the node centre
+/// (error measured in tests/integrals/TreeHydrostaticsTest.cpp). Non-flat water without a patch, or waves so curved
+/// that the mesh's typical leaf is too large for the expansion (TreeHydrostatics.cpp): clippedHydrostatics.
+/// @param tree  buildMeshMomentTree(mesh)
+/// @throws std::invalid_argument for a tree of another mesh, bad density/gravity or a non-finite pose
+HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
+                                    const btWaterSurface& water, double time, double fluidDensity, double gravity,
+                                    const Eigen::Vector3d& torqueReference, const WaterPatch* patch = nullptr);
 
 }  // namespace buoyancy

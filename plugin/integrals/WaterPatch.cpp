@@ -36,6 +36,17 @@ void WaterPatch::build(const btWaterSurface& water, double cx, double cz, double
             m_qz[std::size_t(j) * nodes + i] = m_z0 + j * m_h;
         }
     water.heightsCached(m_qx.data(), m_qz.data(), n, time, m_f.data(), cache);
+    // Per-cell polynomial coefficients are computed on first use after this build (cell()).
+    const std::size_t cells = std::size_t(nodes - 3) * std::size_t(nodes - 3);
+    if (m_cellStamp.size() != cells) {
+        m_cellStamp.assign(cells, 0);
+        m_coef.resize(16 * cells);
+        m_epoch = 0;
+    }
+    if (++m_epoch == 0) {
+        std::fill(m_cellStamp.begin(), m_cellStamp.end(), 0u);
+        m_epoch = 1;
+    }
     m_min = m_f[0];
     m_max = m_f[0];
     m_finite = true;
@@ -44,32 +55,77 @@ void WaterPatch::build(const btWaterSurface& water, double cx, double cz, double
         m_min = std::min(m_min, f);
         m_max = std::max(m_max, f);
     }
+    // Curvature scale (see curvatureBound): the largest second difference of the nodes along x, along z, and mixed,
+    // over h². The interpolant's own second derivative is a combination of these (weights up to 3.75 in the worst
+    // case, near 1 for smooth waves: Catmull-Rom reproduces quadratics); 1.25 × the sum is used. Not a strict bound:
+    // a node of the moment tree misclassified by it contributes an error of second order in the sliver it gets wrong.
+    double dxx = 0, dzz = 0, dxz = 0;
+    const auto F = [&](int i, int j) { return m_f[std::size_t(j) * nodes + i]; };
+    for (int j = 0; j < nodes; ++j)
+        for (int i = 0; i < nodes; ++i) {
+            if (i > 0 && i + 1 < nodes) dxx = std::max(dxx, std::abs(F(i - 1, j) - 2 * F(i, j) + F(i + 1, j)));
+            if (j > 0 && j + 1 < nodes) dzz = std::max(dzz, std::abs(F(i, j - 1) - 2 * F(i, j) + F(i, j + 1)));
+            if (i + 1 < nodes && j + 1 < nodes)
+                dxz = std::max(dxz, std::abs(F(i + 1, j + 1) - F(i + 1, j) - F(i, j + 1) + F(i, j)));
+        }
+    m_curvature = 1.25 * (std::max(dxx, dzz) + dxz) * m_invH * m_invH;
+    if (!std::isfinite(m_curvature)) m_finite = false;
 }
 
-namespace {
-/// Catmull-Rom weights for the 4 nodes around parameter t ∈ [0, 1] (exact for quadratics).
-inline void catmullRom(double t, double w[4]) {
-    const double t2 = t * t, t3 = t2 * t;
-    w[0] = 0.5 * (-t3 + 2.0 * t2 - t);
-    w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0);
-    w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t);
-    w[3] = 0.5 * (t3 - t2);
-}
-}  // namespace
 
-double WaterPatch::height(double x, double z) const {
+const double* WaterPatch::cell(double x, double z, double& tu, double& tv) const {
     const double u = (x - m_x0) * m_invH, v = (z - m_z0) * m_invH;
     // Cells 1..M−3 have both neighbours; clamp outside points to the border cells.
     const double lo = 1.0, hi = double(m_m - 2);
     const double uc = std::min(std::max(u, lo), hi), vc = std::min(std::max(v, lo), hi);
-    int i = std::min(int(uc), m_m - 3), j = std::min(int(vc), m_m - 3);
-    double wu[4], wv[4];
-    catmullRom(uc - i, wu);
-    catmullRom(vc - j, wv);
-    const double* f = m_f.data() + std::size_t(j - 1) * m_m + (i - 1);
-    double s = 0;
-    for (int b = 0; b < 4; ++b, f += m_m) s += wv[b] * (wu[0] * f[0] + wu[1] * f[1] + wu[2] * f[2] + wu[3] * f[3]);
-    return s;
+    const int i = std::min(int(uc), m_m - 3), j = std::min(int(vc), m_m - 3);
+    tu = uc - i;
+    tv = vc - j;
+    const std::size_t c = std::size_t(j - 1) * std::size_t(m_m - 3) + std::size_t(i - 1);
+    double* C = m_coef.data() + 16 * c;
+    if (m_cellStamp[c] != m_epoch) {
+        // Power-basis coefficients of the cell's bicubic: C = M F Mᵀ, F the 4×4 nodes around it (a along x, b along
+        // z), M the Catmull-Rom basis (w_a(t) = Σ_p M[p][a] tᵖ): f = Σ_pq C[p][q] tu^p tv^q.
+        static constexpr double M[4][4] = {{0, 1, 0, 0}, {-0.5, 0, 0.5, 0}, {1, -2.5, 2, -0.5}, {-0.5, 1.5, -1.5, 0.5}};
+        const double* F = m_f.data() + std::size_t(j - 1) * m_m + (i - 1);  // F[b * M + a]
+        double FM[4][4];  // FM[a][q] = Σ_b F[a][b] M[q][b]
+        for (int a = 0; a < 4; ++a)
+            for (int q = 0; q < 4; ++q)
+                FM[a][q] = F[a] * M[q][0] + F[m_m + a] * M[q][1] + F[2 * m_m + a] * M[q][2] + F[3 * m_m + a] * M[q][3];
+        for (int p = 0; p < 4; ++p)
+            for (int q = 0; q < 4; ++q)
+                C[4 * p + q] = M[p][0] * FM[0][q] + M[p][1] * FM[1][q] + M[p][2] * FM[2][q] + M[p][3] * FM[3][q];
+        m_cellStamp[c] = m_epoch;
+    }
+    return C;
+}
+
+void WaterPatch::taylor(double x, double z, double& f, double& fx, double& fz, double& fxx, double& fxz,
+                        double& fzz) const {
+    double tu, tv;
+    const double* C = cell(x, z, tu, tv);
+    // a_q(tu) = Σ_p C[p][q] tu^p and its first two derivatives, then the same in tv.
+    double a0[4], a1[4], a2[4];
+    for (int q = 0; q < 4; ++q) {
+        const double c0 = C[q], c1 = C[4 + q], c2 = C[8 + q], c3 = C[12 + q];
+        a0[q] = ((c3 * tu + c2) * tu + c1) * tu + c0;
+        a1[q] = (3.0 * c3 * tu + 2.0 * c2) * tu + c1;
+        a2[q] = 6.0 * c3 * tu + 2.0 * c2;
+    }
+    f = ((a0[3] * tv + a0[2]) * tv + a0[1]) * tv + a0[0];
+    fz = ((3.0 * a0[3] * tv + 2.0 * a0[2]) * tv + a0[1]) * m_invH;
+    fzz = (6.0 * a0[3] * tv + 2.0 * a0[2]) * m_invH * m_invH;
+    fx = (((a1[3] * tv + a1[2]) * tv + a1[1]) * tv + a1[0]) * m_invH;
+    fxz = ((3.0 * a1[3] * tv + 2.0 * a1[2]) * tv + a1[1]) * m_invH * m_invH;
+    fxx = (((a2[3] * tv + a2[2]) * tv + a2[1]) * tv + a2[0]) * m_invH * m_invH;
+}
+
+double WaterPatch::height(double x, double z) const {
+    double tu, tv;
+    const double* C = cell(x, z, tu, tv);
+    double a[4];
+    for (int q = 0; q < 4; ++q) a[q] = ((C[12 + q] * tu + C[8 + q]) * tu + C[4 + q]) * tu + C[q];
+    return ((a[3] * tv + a[2]) * tv + a[1]) * tv + a[0];
 }
 
 void WaterPatch::heights(const double* x, const double* z, std::size_t n, double* outHeight) const {

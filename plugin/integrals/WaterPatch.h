@@ -8,6 +8,7 @@
 /// The error this adds is measured against exact per-point queries in tests/integrals and docs/benchmarks.
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 class btWaterSurface;
@@ -15,7 +16,7 @@ struct btWaterQueryCache;
 
 namespace buoyancy {
 
-/// A per-body grid of water heights (one per body; not shared between threads).
+/// A per-body grid of water heights (one per body; not shared between threads: the queries fill a per-cell cache).
 class WaterPatch {
 public:
     /// Query the surface on an M×M grid of spacing h = 2r/(M − 4) (M = nodes ≥ 5: a 1-node ghost ring for the
@@ -34,6 +35,14 @@ public:
     /// Batch form of height().
     void heights(const double* x, const double* z, std::size_t n, double* outHeight) const;
 
+    /// Second-order Taylor data of the interpolant at world (x, z) (clamped like height()): value f (m), gradient
+    /// (fx, fz) and second derivatives (fxx, fxz, fzz, 1/m). Used by the exact-mesh moment tree (DESIGN-NOTES 2.5).
+    void taylor(double x, double z, double& f, double& fx, double& fz, double& fxx, double& fxz, double& fzz) const;
+    /// Scale of the interpolant's curvature (≈ the largest spectral norm of its Hessian), 1/m: 1.25 × (largest axial +
+    /// largest mixed second difference of the nodes) / h². Used to classify moment-tree nodes (DESIGN-NOTES 2.5) as
+    /// |f(p + δ) − f(p) − ∇f(p)·δ| ≲ ½ curvatureBound() |δ|²; not a strict bound (see WaterPatch.cpp).
+    double curvatureBound() const { return m_curvature; }
+
     /// Lowest and highest node height (the interpolant may overshoot by a few per cent of the node spread), m.
     double minNode() const { return m_min; }
     /// see minNode
@@ -46,11 +55,19 @@ public:
     bool finite() const { return m_finite; }
 
 private:
+    /// The cell holding world (x, z) (clamped to the border cells), its local coordinates tu, tv ∈ [0, 1], and its 16
+    /// power-basis coefficients C[4p + q] of tu^p tv^q, computed on first use after build().
+    const double* cell(double x, double z, double& tu, double& tv) const;
+
     int m_m = 0;
     double m_x0 = 0, m_z0 = 0, m_h = 1, m_invH = 1;
     double m_min = 0, m_max = 0;
+    double m_curvature = 0;
     bool m_finite = true;
     std::vector<double> m_qx, m_qz, m_f;
+    mutable std::vector<double> m_coef;             ///< 16 coefficients per cell (cell())
+    mutable std::vector<std::uint32_t> m_cellStamp; ///< build epoch each cell's coefficients belong to
+    std::uint32_t m_epoch = 0;                      ///< incremented by build()
 };
 
 }  // namespace buoyancy

@@ -59,7 +59,8 @@ AccuracyReport measureAccuracy(const TriangleMesh& mesh, BuoyancyMethod requeste
             const HydrostaticsResult r =
                 sampled
                     ? sampledHydrostatics(samples, pose, water, 0.0, 1000.0, 9.81, pose * dry.centre, ws)
-                    : clippedHydrostatics(mesh, pose, water, 0.0, 1000.0, 9.81, pose * dry.centre);
+                    : treeHydrostatics(shape->getMomentTree(), shape->getMesh(), pose, water, 0.0, 1000.0, 9.81,
+                                       pose * dry.centre);  // what the library computes (moment tree)
             rep.sub_volume_pct =
                 std::max(rep.sub_volume_pct, 100 * std::fabs(r.submerged_volume - sub.volume) / exact.volume);
             if (sub.volume > 0.01 * exact.volume)

@@ -81,6 +81,47 @@ TEST_CASE("WaterPatch: one batch of M² queries, exact on quadratic water", "[in
     CHECK_THROWS_AS(patch.build(water, 0, 0, 0, 0, 8, cache), std::invalid_argument);
 }
 
+TEST_CASE("WaterPatch: Taylor data exact on quadratic water, derivatives match the sine wave's", "[integrals][lod]") {
+    QuadraticWater water;
+    btWaterQueryCache cache;
+    WaterPatch patch;
+    patch.build(water, 0.4, -1.1, 1.7, 0.0, 8, cache);
+    for (int i = 0; i <= 12; ++i)
+        for (int j = 0; j <= 12; ++j) {
+            const double x = 0.4 - 1.7 + 0.283 * i, z = -1.1 - 1.7 + 0.283 * j;
+            double f, fx, fz, fxx, fxz, fzz;
+            patch.taylor(x, z, f, fx, fz, fxx, fxz, fzz);
+            // f = 0.3 − 0.1 x + 0.05 z + 0.02 x² − 0.03 x z + 0.01 z² (QuadraticWater)
+            CHECK(f == Approx(QuadraticWater::f(x, z)).margin(1e-12));
+            CHECK(fx == Approx(-0.1 + 0.04 * x - 0.03 * z).margin(1e-12));
+            CHECK(fz == Approx(0.05 - 0.03 * x + 0.02 * z).margin(1e-12));
+            CHECK(fxx == Approx(0.04).margin(1e-12));
+            CHECK(fxz == Approx(-0.03).margin(1e-12));
+            CHECK(fzz == Approx(0.02).margin(1e-12));
+            CHECK(patch.height(x, z) == Approx(f).margin(1e-15));
+        }
+    // Curvature scale: 1.25 × (largest axial + mixed second difference) / h² = 1.25 (0.04 + 0.03) for this quadratic.
+    CHECK(patch.curvatureBound() == Approx(1.25 * (0.04 + 0.03)).epsilon(1e-9));
+    // A 10 m sine of amplitude 0.2 with 20 nodes over 4 m: derivatives close to the analytic ones.
+    const SineWater sine(0.2, 10.0);
+    patch.build(sine, 1.3, -0.7, 2.0, 0.0, 20, cache);
+    const double k = 2 * M_PI / 10.0;
+    double worst1 = 0, worst2 = 0;
+    for (int i = 0; i <= 10; ++i)
+        for (int j = 0; j <= 10; ++j) {
+            const double x = 1.3 - 2.0 + 0.4 * i, z = -0.7 - 2.0 + 0.4 * j;
+            double f, fx, fz, fxx, fxz, fzz;
+            patch.taylor(x, z, f, fx, fz, fxx, fxz, fzz);
+            const double th = k * (0.8 * x + 0.6 * z) + 0.3;
+            worst1 = std::max({worst1, std::abs(fx - 0.2 * k * 0.8 * std::cos(th)), std::abs(fz - 0.2 * k * 0.6 * std::cos(th))});
+            worst2 = std::max({worst2, std::abs(fxx + 0.2 * k * k * 0.64 * std::sin(th)),
+                               std::abs(fxz + 0.2 * k * k * 0.48 * std::sin(th)), std::abs(fzz + 0.2 * k * k * 0.36 * std::sin(th))});
+        }
+    INFO("worst slope error " << worst1 << ", worst curvature error " << worst2 << " (curvature amplitude " << 0.2 * k * k << ")");
+    CHECK(worst1 < 0.02 * 0.2 * k);
+    CHECK(worst2 < 0.15 * 0.2 * k * k);
+}
+
 TEST_CASE("WaterPatch: error on a sine wave shrinks at least like h^2.5 (bicubic)", "[integrals][lod]") {
     // Wavelength 10 m, amplitude 0.2 m (P3's shortest wave) over a 4 m footprint.
     const SineWater water(0.2, 10.0);

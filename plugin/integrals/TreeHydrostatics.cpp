@@ -1,0 +1,223 @@
+/// @file TreeHydrostatics.cpp
+/// Exact-mesh hydrostatics through the moment tree (declared in Hydrostatics.h; DESIGN-NOTES 2.5 "tiles with
+/// precomputed moments"). Same fields as ClippedHydrostatics.cpp (DESIGN-NOTES 2.2–2.3), same result in flat water
+/// to rounding; the triangles of the leaves that straddle the waterline are clipped exactly as there (on waves with
+/// the corner heights from the leaf's second-order expansion of the water patch).
+///
+/// A node entirely under water, with the water height over it expanded to second order about the node centre P
+/// (world, relative to the reference r): f = f0 + G·d + ½ dᵀ H d, d = p − P = R s (s body frame about the node
+/// centre c), G = (f_x, 0, f_z), H = [[f_xx, 0, f_xz], [0, 0, 0], [f_xz, 0, f_zz]]. Then
+///   D = y − f = c0 + e·s − ½ sᵀ H_b s,  c0 = P_y − f0,  e = Rᵀ(ŷ − G),  H_b = Rᵀ H R,
+/// and with u = Rᵀŷ (n_y = u·n) and the node moments μ0 = ∫n, μ1 = ∫s nᵀ, μ2 = ∫s sᵀ n (MeshMomentTree.h):
+///   ∫ D n        = c0 μ0 + μ1ᵀ e − ½ H_b : μ2                                   (exact for quadratic f)
+///   V            = u · ∫ D n
+///   ∫ D s × n    = c0 ε:μ1 + Σ_i e_i ∫ s_i s × n                                (the −½ sᵀH s term, cubic in s, dropped)
+///   ∫ s D n_y    = c0 μ1 u + Σ_j e_j ∫ s s_j n_y                                (idem)
+///   ∫ D² n_y     = c0² μ0·u + 2 c0 e·μ1 u + eᵀ(μ2·u)e − c0 H_b:(μ2·u)           (terms of order ≥ 3 in s dropped)
+/// In flat water G = H = 0 and every formula is exact. On waves the dropped terms are O(|H| ρ³) per unit area for a
+/// node of radius ρ (measured against clipping every triangle in tests/integrals/TreeHydrostaticsTest.cpp).
+/// Classification of a node: D ranges over it within c0 ± (Σ_k |e·a_k| h_k + ½ K ρ²) (a_k, h_k its oriented box, K the
+/// patch's curvature scale): entirely above → skipped, entirely below → closed form, else its children / its triangles.
+/// Torque and first moments about r follow from the node's offset c − q_r, q_r = Rᵀ(r − t).
+
+#include "integrals/Hydrostatics.h"
+#include "integrals/MeshMomentTree.h"
+#include "integrals/WaterPatch.h"
+#include "integrals/WetTriangleIntegrals.h"
+#include "water/btWaterSurface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace buoyancy {
+namespace {
+
+/// Largest K·ρ (patch curvature bound × node radius) for which a submerged node takes the closed form on waves.
+constexpr double kMaxCurvatureRadius = 0.025;
+
+/// Packed symmetric index (xx, xy, xz, yy, yz, zz).
+constexpr int kSym[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+
+/// Accumulators of the closed-form node terms, body frame (rotated once at the end).
+struct NodeSums {
+    double V = 0, D2 = 0, Ay = 0, area = 0;
+    Eigen::Vector3d F = Eigen::Vector3d::Zero();  ///< Σ ∫ D n, body frame
+    Eigen::Vector3d T = Eigen::Vector3d::Zero();  ///< Σ ∫ D (q − q_r) × n, body frame
+    Eigen::Vector3d Q = Eigen::Vector3d::Zero();  ///< Σ ∫ (q − q_r) D n_y, body frame
+};
+
+/// Add a node entirely under water (see the file comment). e, Hw (packed H_b, off-diagonals doubled) body frame.
+inline void addWetNode(const MeshMomentNode& n, const Eigen::Vector3d& u, const Eigen::Vector3d& offset, double c0,
+                       const Eigen::Vector3d& e, const double Hw[6], NodeSums& acc) {
+    // μ2·u and μ1 u
+    double m2u[6];
+    for (int ij = 0; ij < 6; ++ij) m2u[ij] = n.m2[ij][0] * u.x() + n.m2[ij][1] * u.y() + n.m2[ij][2] * u.z();
+    const Eigen::Vector3d m1u = n.m1 * u;
+    const double m0u = n.m0.dot(u);
+    // ∫ D n (body)
+    Eigen::Vector3d F = c0 * n.m0 + n.m1.transpose() * e;
+    for (int ij = 0; ij < 6; ++ij) {
+        const double h = 0.5 * Hw[ij];
+        F.x() -= h * n.m2[ij][0];
+        F.y() -= h * n.m2[ij][1];
+        F.z() -= h * n.m2[ij][2];
+    }
+    const double V = u.dot(F);
+    // ∫ D s × n ≈ c0 ε:μ1 + Σ_i e_i ∫ s_i (s × n); (s × n)_a = s_{a+1} n_{a+2} − s_{a+2} n_{a+1}
+    Eigen::Vector3d sxn(n.m1(1, 2) - n.m1(2, 1), n.m1(2, 0) - n.m1(0, 2), n.m1(0, 1) - n.m1(1, 0));
+    sxn *= c0;
+    for (int i = 0; i < 3; ++i) {
+        const double ei = e[i];
+        sxn.x() += ei * (n.m2[kSym[i][1]][2] - n.m2[kSym[i][2]][1]);
+        sxn.y() += ei * (n.m2[kSym[i][2]][0] - n.m2[kSym[i][0]][2]);
+        sxn.z() += ei * (n.m2[kSym[i][0]][1] - n.m2[kSym[i][1]][0]);
+    }
+    // ∫ s D n_y ≈ c0 μ1 u + Σ_j e_j ∫ s s_j n_y
+    Eigen::Vector3d sDny = c0 * m1u;
+    for (int i = 0; i < 3; ++i) sDny[i] += e.x() * m2u[kSym[i][0]] + e.y() * m2u[kSym[i][1]] + e.z() * m2u[kSym[i][2]];
+    // ∫ D² n_y
+    double eMe = 0, hM = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) eMe += e[i] * e[j] * m2u[kSym[i][j]];
+    for (int ij = 0; ij < 6; ++ij) hM += Hw[ij] * m2u[ij];
+    const double D2 = c0 * c0 * m0u + 2.0 * c0 * e.dot(m1u) + eMe - c0 * hM;
+
+    acc.V += V;
+    acc.F += F;
+    acc.T += offset.cross(F) + sxn;
+    acc.Q += offset * V + sDny;
+    acc.D2 += D2;
+    acc.Ay += m0u;
+    acc.area += n.area;
+}
+
+}  // namespace
+
+HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
+                                    const btWaterSurface& water, double time, double fluidDensity, double gravity,
+                                    const Eigen::Vector3d& torqueReference, const WaterPatch* patch) {
+    if (!std::isfinite(fluidDensity) || fluidDensity < 0)
+        throw std::invalid_argument("treeHydrostatics: fluid density must be finite and ≥ 0, got " +
+                                    std::to_string(fluidDensity));
+    if (!std::isfinite(gravity)) throw std::invalid_argument("treeHydrostatics: gravity is not finite");
+    if (!pose.matrix().allFinite() || !torqueReference.allFinite())
+        throw std::invalid_argument("treeHydrostatics: the pose or the reference point is not finite");
+    double flatH = 0;
+    const bool flat = water.isFlat(time, flatH);
+    // Without a second-order water model over the nodes (a surface that is neither flat nor given by a patch):
+    // clip every triangle (ClippedHydrostatics.cpp).
+    // Clipping every triangle is also what pays on waves whose curvature K makes the typical leaf too large for the
+    // closed form two levels up (K × median leaf radius > kMaxCurvatureRadius / 2): the traversal would then visit
+    // almost every small node (measured: docs/benchmarks/mesh_tree.csv, the 3,400-triangle boat in the P3 sea).
+    if (tree.nodes.empty() || (!flat && !(patch && patch->finite())) ||
+        (!flat && patch->curvatureBound() * tree.medianLeafRadius > 0.5 * kMaxCurvatureRadius))
+        return clippedHydrostatics(mesh, pose, water, time, fluidDensity, gravity, torqueReference, patch);
+    if (tree.triangles.size() != mesh.triangles.size() || tree.bounds.size() != tree.nodes.size())
+        throw std::invalid_argument("treeHydrostatics: the tree was built for another mesh");
+    if (flat && !std::isfinite(flatH)) throw std::runtime_error("treeHydrostatics: the flat water height is not finite");
+
+    thread_local std::vector<int> stack;  // traversal stack, reused (no allocation per call once grown)
+    const Eigen::Matrix3d R = pose.linear();
+    const Eigen::Vector3d t = pose.translation();
+    const Eigen::Vector3d& r = torqueReference;
+    const Eigen::Vector3d u = R.row(1).transpose();   // world up in the body frame
+    const Eigen::Vector3d X = R.row(0).transpose(), Z = R.row(2).transpose();
+    const Eigen::Vector3d qr = R.transpose() * (r - t);  // reference point, body frame
+    const double K = flat ? 0.0 : patch->curvatureBound();
+
+    WetIntegrals I;  // leaves, world frame relative to r
+    NodeSums acc;    // wet nodes, body frame
+    stack.clear();
+    stack.push_back(0);
+    while (!stack.empty()) {
+        const int index = stack.back();
+        stack.pop_back();
+        const MeshMomentBounds& b = tree.bounds[std::size_t(index)];
+        const Eigen::Vector3d c(b.centre[0], b.centre[1], b.centre[2]);
+        const Eigen::Vector3d P = R * c + t;
+        double f0 = flatH, fx = 0, fz = 0, fxx = 0, fxz = 0, fzz = 0;
+        if (!flat) patch->taylor(P.x(), P.z(), f0, fx, fz, fxx, fxz, fzz);
+        const double rho = b.radius;
+        // D = y − f over the node: c0 + e·s − ½ sᵀH_b s (file comment). Its linear part ranges over the node's oriented
+        // box by ± Σ_k |e·a_k| h_k (the box's extent across the local water slope, not just along the vertical); the
+        // quadratic part by ± ½ K ρ².
+        double c0 = P.y() - f0;
+        Eigen::Vector3d e = u - fx * X - fz * Z;  // Rᵀ(ŷ − G), body frame
+        const Eigen::Vector3d a0(b.axes[0], b.axes[1], b.axes[2]), a1(b.axes[3], b.axes[4], b.axes[5]);
+        const double spread = std::abs(e.dot(a0)) * b.half[0] + std::abs(e.dot(a1)) * b.half[1] +
+                              std::abs(e.dot(a0.cross(a1))) * b.half[2] + 0.5 * K * rho * rho;
+        if (c0 - spread >= 0) continue;  // entirely above the water
+        // Entirely below: closed form, if the node is small against the waves' curvature (K ρ ≤ kMaxCurvatureRadius:
+        // the neglected third-order part of the water height over the node grows like ρ³; measured in
+        // tests/integrals/TreeHydrostaticsTest.cpp: at 0.025 the tree adds ≤ 2e-4 of V to the patch's own error).
+        if (c0 + spread <= 0 && K * rho <= kMaxCurvatureRadius) {
+            const MeshMomentNode& n = tree.nodes[std::size_t(index)];
+            // The moments are about the double-precision centre: move the expansion there (δ = its world offset).
+            const Eigen::Vector3d Pd = R * n.centre + t;
+            const double dx = Pd.x() - P.x(), dz = Pd.z() - P.z();
+            f0 += fx * dx + fz * dz + 0.5 * (fxx * dx * dx + 2.0 * fxz * dx * dz + fzz * dz * dz);
+            fx += fxx * dx + fxz * dz;
+            fz += fxz * dx + fzz * dz;
+            c0 = Pd.y() - f0;
+            e = u - fx * X - fz * Z;
+            // H_b = f_xx X Xᵀ + f_xz (X Zᵀ + Z Xᵀ) + f_zz Z Zᵀ, packed, off-diagonals doubled.
+            double Hw[6];
+            for (int i = 0; i < 3; ++i)
+                for (int j = i; j < 3; ++j) {
+                    const double h = fxx * X[i] * X[j] + fxz * (X[i] * Z[j] + Z[i] * X[j]) + fzz * Z[i] * Z[j];
+                    Hw[kSym[i][j]] = i == j ? h : 2.0 * h;
+                }
+            addWetNode(n, u, n.centre - qr, c0, e, Hw, acc);
+            continue;
+        }
+        if (b.right >= 0) {
+            stack.push_back(index + 1);  // first child: next in depth-first order
+            stack.push_back(b.right);
+            continue;
+        }
+        // A straddling leaf: clip its triangles (corners read contiguously). The water height at each corner: in flat
+        // water the level; on waves the leaf's second-order expansion when the leaf is small against the curvature (same
+        // criterion as above), else the patch's interpolant (a leaf of a few large triangles spans much of the body).
+        const double Px = P.x() - r.x(), Pz = P.z() - r.z(), f0r = f0 - r.y();
+        const bool expand = flat || K * rho <= kMaxCurvatureRadius;
+        const Eigen::Vector3d tr = t - r;
+        const Eigen::Vector3d* corner = tree.corners.data() + 3 * std::size_t(b.first);
+        for (int k = 0; k < b.count; ++k, corner += 3) {
+            PieceVertex in[3];
+            for (int j = 0; j < 3; ++j) {
+                in[j].p = R * corner[j] + tr;
+                const double dx = in[j].p.x() - Px, dz = in[j].p.z() - Pz;
+                in[j].f = expand ? f0r + fx * dx + fz * dz + 0.5 * (fxx * dx * dx + 2.0 * fxz * dx * dz + fzz * dz * dz)
+                                 : patch->height(in[j].p.x() + r.x(), in[j].p.z() + r.z()) - r.y();
+            }
+            I.addClippedTriangle(in);
+        }
+    }
+
+    I.V += acc.V;
+    I.dA += R * acc.F;
+    I.dpxA += R * acc.T;
+    I.first += R * acc.Q;
+    I.first.y() -= 0.5 * acc.D2;
+    I.Ay += acc.Ay;
+    I.area += acc.area;
+
+    const double rg = fluidDensity * gravity;
+    HydrostaticsResult res;
+    res.submerged_volume = I.V;
+    if (I.V != 0) res.centre_of_buoyancy = r + I.first / I.V;
+    res.force = rg * I.dA;
+    res.torque = rg * I.dpxA;
+    res.waterline_area = -I.Ay;
+    res.wetted_area = I.area;
+    if (!std::isfinite(res.submerged_volume) || !res.force.allFinite() || !res.torque.allFinite() ||
+        !res.centre_of_buoyancy.allFinite())
+        throw std::runtime_error("treeHydrostatics: non-finite result (non-finite pose, vertices or water heights)");
+    return res;
+}
+
+}  // namespace buoyancy

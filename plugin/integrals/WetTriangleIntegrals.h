@@ -1,0 +1,87 @@
+#pragma once
+/// @file WetTriangleIntegrals.h
+/// The exact per-triangle hydrostatic integrals shared by the exact-mesh methods (ClippedHydrostatics.cpp:
+/// every triangle; TreeHydrostatics.cpp: the triangles of the tree leaves that straddle the waterline).
+/// Fields of DESIGN-NOTES 2.2 and pressure of 2.3, integrated over flat wetted pieces, positions relative to
+/// a reference point.
+
+#include <Eigen/Geometry>
+
+namespace buoyancy {
+
+/// A vertex of a clipped piece, relative to the reference point: position p' and water height f' over it, m.
+struct PieceVertex {
+    Eigen::Vector3d p;
+    double f;
+};
+
+/// Running (plain double) integrals over wetted pieces, positions relative to a reference point r:
+/// V = ∫ (y − f) n_y, first = (∫ x'(y − f) n_y, ∫ (y'² − f'²)/2 n_y, ∫ z'(y − f) n_y),
+/// dA = ∫ (y − f) n (force / ρg), dpxA = ∫ (y − f) p' × n (torque / ρg), Ay = Σ A^y, area = wetted area.
+struct WetIntegrals {
+    double V = 0;                                      ///< m³
+    Eigen::Vector3d first = Eigen::Vector3d::Zero();   ///< m⁴
+    Eigen::Vector3d dA = Eigen::Vector3d::Zero();      ///< m³
+    Eigen::Vector3d dpxA = Eigen::Vector3d::Zero();    ///< m⁴
+    double Ay = 0;                                     ///< m²
+    double area = 0;                                   ///< m²
+
+    /// Exact integrals over the flat triangle (a, b, c), wetted everywhere (y ≤ f), f linear over it.
+    void addTriangle(const PieceVertex& a, const PieceVertex& b, const PieceVertex& c) {
+        const Eigen::Vector3d A = 0.5 * (b.p - a.p).cross(c.p - a.p);  // area × outward normal
+        // Edge midpoints: the quadrature ∫ φ dS = |S|/3 Σ φ(m_k) is exact for φ of degree ≤ 2.
+        // Each field is (polynomial) × n, so ∫ φ n dS = A/3 Σ φ(m_k).
+        const PieceVertex* v[3] = {&a, &b, &c};
+        double sd = 0, sdy = 0;                         // Σ d, Σ d (y' + f')/2
+        Eigen::Vector3d sdp = Eigen::Vector3d::Zero();  // Σ d p'
+        for (int k = 0; k < 3; ++k) {
+            const PieceVertex& u = *v[k];
+            const PieceVertex& w = *v[(k + 1) % 3];
+            const Eigen::Vector3d m = 0.5 * (u.p + w.p);
+            const double fm = 0.5 * (u.f + w.f);
+            const double d = m.y() - fm;  // y − f ≤ 0
+            sd += d;
+            sdy += d * 0.5 * (m.y() + fm);
+            sdp += d * m;
+        }
+        sd /= 3.0;
+        sdy /= 3.0;
+        sdp /= 3.0;
+        V += A.y() * sd;               // ∫ (y − f) n_y
+        first.x() += A.y() * sdp.x();  // ∫ x'(y − f) n_y
+        first.y() += A.y() * sdy;      // ∫ (y'² − f'²)/2 n_y
+        first.z() += A.y() * sdp.z();  // ∫ z'(y − f) n_y
+        dA += sd * A;                  // ∫ (y − f) n     → F = ρg ∫ (y − f) n = −∫ P n
+        dpxA += sdp.cross(A);          // ∫ (y − f) p' × n → τ = ρg ∫ (y − f) p' × n
+        Ay += A.y();
+        area += A.norm();
+    }
+
+    /// Clip the triangle (in[0], in[1], in[2]) against y − f ≤ 0 (f linear over it: the plane through its
+    /// corners' heights; Sutherland–Hodgman) and add the wetted part.
+    void addClippedTriangle(const PieceVertex in[3]) {
+        double d[3];
+        for (int k = 0; k < 3; ++k) d[k] = in[k].p.y() - in[k].f;
+        if (d[0] >= 0 && d[1] >= 0 && d[2] >= 0) return;  // dry (or touching)
+        if (d[0] <= 0 && d[1] <= 0 && d[2] <= 0) {
+            addTriangle(in[0], in[1], in[2]);
+            return;
+        }
+        PieceVertex poly[4];
+        int n = 0;
+        for (int k = 0; k < 3; ++k) {
+            const int k1 = (k + 1) % 3;
+            if (d[k] <= 0) poly[n++] = in[k];
+            if ((d[k] < 0 && d[k1] > 0) || (d[k] > 0 && d[k1] < 0)) {
+                const double u = d[k] / (d[k] - d[k1]);
+                PieceVertex x;
+                x.p = in[k].p + u * (in[k1].p - in[k].p);
+                x.f = in[k].f + u * (in[k1].f - in[k].f);
+                poly[n++] = x;
+            }
+        }
+        for (int k = 1; k + 1 < n; ++k) addTriangle(poly[0], poly[k], poly[k + 1]);
+    }
+};
+
+}  // namespace buoyancy
