@@ -1,24 +1,51 @@
 #!/usr/bin/env bash
 # The reliability part of CI (issue 10), run by .ci/run after scripts/test.sh:
-#   1. sanitizer build (AddressSanitizer + UndefinedBehaviorSanitizer, gcc, float) of every fast test
+#   1. sanitizer build (AddressSanitizer + UndefinedBehaviorSanitizer, gcc, float, -O1 -g1) of the fast tests
 #      (ctest -LE "long|slow": the tests tagged [slow] repeat the same code paths for many seconds of physics
-#      and run unsanitized in scripts/test.sh; the install test is left out: it re-builds a consumer);
+#      and run unsanitized in scripts/test.sh; left out too: the install test, which re-builds a consumer, and
+#      tests_examples with the renderer and the browser, which run in scripts/test.sh);
 #   2. the physics tests (labels integrals, bake, bullet, accuracy, water, reliability) with floating-point
 #      exceptions trapped (invalid, divide-by-zero, overflow; double Release build of scripts/test.sh);
 #   3. a short libFuzzer run of every target in fuzz/ (FUZZ_SECONDS per target, default 30).
-# Prints the time of each part. Build dirs: build-asan/, build-fuzz/ (and build/ from scripts/test.sh).
+# Prints the wall-clock and CPU time (user + sys of everything it ran: unlike the wall-clock time it does not
+# grow when other jobs load the machine) of each part. Build dirs: build-asan/, build-fuzz/ (and build/,
+# build-double/ from scripts/test.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh --extra
 jobs=${JOBS:-2}
+# A private temporary directory: some tests write fixed paths under it (/tmp/buoyancy_scene_test_<scene>/),
+# and another test run on the same machine at the same time would overwrite our files (seen: a scene test read
+# a trajectory another run had just written and failed).
+TMPDIR=$(mktemp -d "${TMPDIR:-/tmp}/ci-extra.XXXXXX")
+export TMPDIR
+trap 'rm -rf "$TMPDIR"' EXIT
+# cpu = CPU seconds (user + sys) of all finished child processes so far (bash's `times`, second line; called
+# in this shell, not in $(...), whose subshell would count only its own children).
+cpu_now() {
+  times >"$TMPDIR/times.txt"
+  cpu=$(sed -n 2p "$TMPDIR/times.txt" |
+        awk '{ s = 0; for (i = 1; i <= 2; i++) { split($i, a, /[ms]/); s += a[1] * 60 + a[2] } printf "%d", s }')
+}
 t0=$SECONDS
+cpu_now; c0=$cpu
 times=()
 failed=()   # each part runs and reports even when an earlier one failed
-lap() { times+=("$1: $((SECONDS - t0)) s"); t0=$SECONDS; }
+lap() {
+  cpu_now
+  times+=("$1: $((SECONDS - t0)) s (CPU $((cpu - c0)) s)"); t0=$SECONDS; c0=$cpu
+}
 
 echo "== sanitizer build (ASan + UBSan)"
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBULLET_BUOYANCY_SANITIZE=ON >/dev/null
-cmake --build build-asan -j"$jobs"
+# Only what the sanitizer tests run: the tests_<folder> executables (and the `buoyancy` CLI that tests_cli and
+# tests_reliability start, a dependency of theirs). -O1 -g1 (line tables: file:line in every report) builds
+# far faster than RelWithDebInfo's -O2 -g. OpenGL is not looked for, so the offscreen renderer, the example
+# scenes, the browser and tests_examples (pictures and scene outcomes, run in scripts/test.sh) are not built.
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+  -DBULLET_BUOYANCY_SANITIZE=ON -DCMAKE_DISABLE_FIND_PACKAGE_OpenGL=ON >/dev/null
+mapfile -t asan_targets < <(cmake --build build-asan --target help | grep -oE '\btests_[a-z_]+' | sort -u)
+echo "targets: ${asan_targets[*]}"
+cmake --build build-asan -j"$jobs" --target "${asan_targets[@]}"
 lap "sanitizer build"
 echo "== sanitizer tests"
 # Tests that check wall-clock speed are meaningless 3-10x slower under the sanitizers: left out here (they
