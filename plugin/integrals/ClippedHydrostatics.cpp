@@ -100,18 +100,7 @@ HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Is
         I.addClippedTriangle(in);  // Sutherland–Hodgman against y − f ≤ 0 (WetTriangleIntegrals.h)
     }
 
-    const double rg = fluidDensity * gravity;
-    HydrostaticsResult res;
-    res.submerged_volume = I.V;
-    if (I.V != 0) res.centre_of_buoyancy = r + I.first / I.V;
-    res.force = rg * I.dA;
-    res.torque = rg * I.dpxA;
-    res.waterline_area = -I.Ay;  // = cap area for a closed mesh in flat water (∮ n_y = 0)
-    res.wetted_area = I.area;
-    if (!std::isfinite(res.submerged_volume) || !res.force.allFinite() || !res.torque.allFinite() ||
-        !res.centre_of_buoyancy.allFinite())
-        throw std::runtime_error("clippedHydrostatics: non-finite result (non-finite pose, vertices or water heights)");
-    return res;
+    return I.result(fluidDensity * gravity, r, "clippedHydrostatics");
 }
 
 }  // namespace buoyancy

@@ -206,18 +206,7 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
     I.Ay += acc.Ay;
     I.area += acc.area;
 
-    const double rg = fluidDensity * gravity;
-    HydrostaticsResult res;
-    res.submerged_volume = I.V;
-    if (I.V != 0) res.centre_of_buoyancy = r + I.first / I.V;
-    res.force = rg * I.dA;
-    res.torque = rg * I.dpxA;
-    res.waterline_area = -I.Ay;
-    res.wetted_area = I.area;
-    if (!std::isfinite(res.submerged_volume) || !res.force.allFinite() || !res.torque.allFinite() ||
-        !res.centre_of_buoyancy.allFinite())
-        throw std::runtime_error("treeHydrostatics: non-finite result (non-finite pose, vertices or water heights)");
-    return res;
+    return I.result(fluidDensity * gravity, r, "treeHydrostatics");
 }
 
 }  // namespace buoyancy

@@ -5,7 +5,12 @@
 /// Fields of DESIGN-NOTES 2.2 and pressure of 2.3, integrated over flat wetted pieces, positions relative to
 /// a reference point.
 
+#include "integrals/Hydrostatics.h"
+
 #include <Eigen/Geometry>
+#include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace buoyancy {
 
@@ -81,6 +86,25 @@ struct WetIntegrals {
             }
         }
         for (int k = 1; k + 1 < n; ++k) addTriangle(poly[0], poly[k], poly[k + 1]);
+    }
+
+    /// The result: volume, centre of buoyancy r + first / V, force ρg·dA, torque ρg·dpxA about r, waterline area
+    /// −Σ A^y (the cap area for a closed mesh in flat water, ∮ n_y = 0), wetted area.
+    /// @param rg  ρ g, N/m³   @param r  the reference point the integrals are relative to, world, m
+    /// @param who  function name for the error message
+    /// @throws std::runtime_error for a non-finite result (non-finite pose, vertices or water heights)
+    HydrostaticsResult result(double rg, const Eigen::Vector3d& r, const char* who) const {
+        HydrostaticsResult res;
+        res.submerged_volume = V;
+        if (V != 0) res.centre_of_buoyancy = r + first / V;
+        res.force = rg * dA;
+        res.torque = rg * dpxA;
+        res.waterline_area = -Ay;
+        res.wetted_area = area;
+        if (!std::isfinite(res.submerged_volume) || !res.force.allFinite() || !res.torque.allFinite() ||
+            !res.centre_of_buoyancy.allFinite())
+            throw std::runtime_error(std::string(who) + ": non-finite result (non-finite pose, vertices or water heights)");
+        return res;
     }
 };
 
