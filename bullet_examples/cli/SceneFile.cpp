@@ -197,6 +197,8 @@ Eigen::Vector2d direction2(const Reader& r, const json& j, const std::string& ke
 /// Height grid CSV: one row per z sample, one column per x sample, comma-separated numbers; empty lines
 /// and lines starting with '#' are skipped; every row must have the same number of values.
 void readHeightCsv(const Reader& r, const std::string& path, const std::string& key, SceneWater& w) {
+    std::error_code ec;  // a directory opens as a stream but fails on the first read
+    if (!std::filesystem::is_regular_file(path, ec)) r.fail(key, "cannot read " + path + " (not a file)");
     std::ifstream in(path);
     if (!in) r.fail(key, "cannot read " + path);
     std::string line;
@@ -381,6 +383,8 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
 }
 
 Scene loadSceneFile(const std::string& path) {
+    std::error_code ec;  // a directory opens as a stream but fails on the first read
+    if (!std::filesystem::is_regular_file(path, ec)) throw UsageError(path + ": cannot read the scene file (not a file)");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw UsageError(path + ": cannot read the scene file");
     std::ostringstream text;

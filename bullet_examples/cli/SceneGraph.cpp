@@ -219,6 +219,9 @@ SceneFlooding readSceneFlooding(const json& body, const std::string& key, const 
         if (g.is_string()) {
             std::filesystem::path p(g.get<std::string>());
             if (p.is_relative()) p = std::filesystem::path(directory) / p;
+            // A directory opens as a stream but throws std::ios_base::failure on the first read (found by fuzzing).
+            std::error_code ec;
+            if (!std::filesystem::is_regular_file(p, ec)) fail(gk, "cannot read " + p.string() + " (not a file)");
             std::ifstream in(p);
             if (!in) fail(gk, "cannot read " + p.string());
             json file;
@@ -226,6 +229,8 @@ SceneFlooding readSceneFlooding(const json& body, const std::string& key, const 
                 in >> file;
             } catch (const json::exception& e) {
                 fail(gk, p.string() + ": invalid JSON: " + e.what());
+            } catch (const std::ios_base::failure& e) {
+                fail(gk, "cannot read " + p.string() + ": " + e.what());
             }
             readGraph(r, file, gk + " (" + p.filename().string() + ")", out);
         } else {

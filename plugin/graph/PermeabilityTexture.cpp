@@ -34,6 +34,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <memory>
@@ -151,6 +152,8 @@ PermeabilityImage decodePermeabilityImage(const unsigned char* data, std::size_t
 }
 
 PermeabilityImage loadPermeabilityImage(const std::string& path) {
+    std::error_code ec;  // a directory opens as a stream but throws std::ios_base::failure on the first read
+    if (!std::filesystem::is_regular_file(path, ec)) throw std::invalid_argument(path + ": cannot read the file (not a file)");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::invalid_argument(path + ": cannot read the file");
     const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -278,6 +278,9 @@ TEST_CASE("scene keys water_graph and permeability: errors name the key", "[grap
     CHECK_THAT(error(R"(, "water_graph": {"auto": {}, "nodes": []})"), Catch::Contains("water_graph.auto"));
     CHECK_THAT(error(", " + node + R"(, "bogus": 1})"), Catch::Contains("water_graph.bogus"));
     CHECK_THAT(error(R"(, "water_graph": "no_such_graph.json")"), Catch::Contains("cannot read"));
+    // A directory instead of a graph file (found by fuzzing: the read threw std::ios_base::failure out of the parser).
+    CHECK_THAT(error(R"(, "water_graph": "/")"), Catch::Contains("bodies[0].water_graph") && Catch::Contains("not a file"));
+    CHECK_THAT(error(R"(, "water_graph": ".")"), Catch::Contains("bodies[0].water_graph") && Catch::Contains("not a file"));
     CHECK_THAT(error(", " + node + R"(}, "permeability": {"texture": "x.png"})"), Catch::Contains("permeability.texture"));
     const cli::Scene ok = cli::parseScene(scene(", " + node + R"(, "seed": 3, "ingress": "paper"}, "permeability": {"regions": [{"centre": [0, -0.5, 0], "radius": 0.3}]})"),
                                           "s.json", ".");

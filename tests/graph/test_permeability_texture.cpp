@@ -117,6 +117,7 @@ TEST_CASE("permeability image errors name the file: missing, empty, not an image
     const fs::path dir = tempDir("errors");
     const std::string missing = (dir / "nothere.png").string();
     CHECK_THAT(errorOf([&] { loadPermeabilityImage(missing); }), Catch::Contains(missing) && Catch::Contains("cannot read"));
+    CHECK_THAT(errorOf([&] { loadPermeabilityImage(dir.string()); }), Catch::Contains("cannot read") && Catch::Contains("not a file"));
     { std::ofstream(dir / "empty.png"); }
     CHECK_THAT(errorOf([&] { loadPermeabilityImage((dir / "empty.png").string()); }),
                Catch::Contains("empty.png") && Catch::Contains("empty"));
