@@ -71,7 +71,16 @@ nan_on_purpose='hydrostatics: bad input gives clear exceptions|bad input: scene 
 lap "FPE tests"
 
 echo "== short fuzz run"
-bash scripts/fuzz-run.sh "${FUZZ_SECONDS:-30}" || failed+=("fuzz")
+# A fuzz finding is a new bug report, not a regression of the change under test (the run is random): it is printed
+# with its input and turned into a regression test by whoever picks it up, and fails CI only when
+# BULLET_BUOYANCY_FUZZ_GATE=1. The sanitizer and FPE runs above are deterministic and always gate.
+if ! bash scripts/fuzz-run.sh "${FUZZ_SECONDS:-30}"; then
+  if [ "${BULLET_BUOYANCY_FUZZ_GATE:-0}" = 1 ]; then
+    failed+=("fuzz")
+  else
+    echo "ci-extra: the fuzz run FOUND A PROBLEM (see above; reported, not gating: BULLET_BUOYANCY_FUZZ_GATE=1 gates it)"
+  fi
+fi
 lap "fuzz (build + run)"
 
 printf '%s\n' "${times[@]}"
