@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include <unistd.h>  // getpid: a private temporary folder per test process
 
 namespace {
 
@@ -44,7 +45,7 @@ int column(const Table& t, const std::string& name) {
 double num(const std::vector<std::string>& row, int c) { return std::stod(row.at(std::size_t(c))); }
 
 std::string tempDir(const std::string& name) {
-    const auto p = std::filesystem::temp_directory_path() / ("buoyancy_bench_test_" + name);
+    const auto p = std::filesystem::temp_directory_path() / ("buoyancy_bench_test_" + std::to_string(::getpid()) + "_" + name);
     std::filesystem::remove_all(p);
     return p.string();
 }

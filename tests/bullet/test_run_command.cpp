@@ -12,13 +12,14 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include <unistd.h>  // getpid: a private temporary folder per test process
 
 namespace {
 
 const std::string kScenes = std::string(BUOYANCY_SOURCE_DIR) + "/bullet_examples/scenes/";
 
 std::string tempDir(const std::string& name) {
-    const auto p = std::filesystem::temp_directory_path() / ("buoyancy_run_test_" + name);
+    const auto p = std::filesystem::temp_directory_path() / ("buoyancy_run_test_" + std::to_string(::getpid()) + "_" + name);
     std::filesystem::remove_all(p);
     return p.string();
 }

@@ -35,7 +35,7 @@ struct Row {
 /// Run a scene through runSceneCommand; rows grouped by body. Fails the test on a non-zero exit or a
 /// non-finite number.
 std::map<std::string, std::vector<Row>> runScene(const std::string& file, std::optional<double> duration = std::nullopt) {
-    const auto out = std::filesystem::temp_directory_path() / ("buoyancy_scene_test_" + file);
+    const auto out = std::filesystem::temp_directory_path() / ("buoyancy_scene_test_" + std::to_string(::getpid()) + "_" + file);
     std::filesystem::remove_all(out);
     const auto t0 = std::chrono::steady_clock::now();
     const int rc = buoyancy::cli::runSceneCommand(kScenes + file, out.string(), duration);

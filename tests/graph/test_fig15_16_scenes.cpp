@@ -28,6 +28,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <unistd.h>  // getpid: a private temporary folder per test process
 
 using namespace buoyancy;
 
@@ -62,7 +63,7 @@ std::vector<std::map<std::string, double>> readCsv(const fs::path& path) {
 std::vector<std::map<std::string, double>> runShipped(const std::string& name, double duration,
                                                       const std::function<std::string(std::string)>& edit = {}) {
     const fs::path src = fs::path(BUOYANCY_SOURCE_DIR) / "bullet_examples" / "scenes" / name;
-    const fs::path dir = fs::temp_directory_path() / ("buoyancy_fig_" + name);
+    const fs::path dir = fs::temp_directory_path() / ("buoyancy_fig_" + std::to_string(::getpid()) + "_" + name);
     fs::create_directories(dir);
     std::ifstream in(src);
     std::stringstream text;

@@ -36,6 +36,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <unistd.h>  // getpid: a private temporary folder per test process
 
 using namespace buoyancy;
 
@@ -44,7 +45,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path tempDir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() / ("buoyancy_perm_" + name);
+    const fs::path d = fs::temp_directory_path() / ("buoyancy_perm_" + std::to_string(::getpid()) + "_" + name);
     fs::create_directories(d);
     return d;
 }

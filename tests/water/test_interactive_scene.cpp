@@ -15,6 +15,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include <unistd.h>  // getpid: a private temporary folder per test process
 
 namespace {
 struct Track {
@@ -58,7 +59,7 @@ TEST_CASE("interactive water in the scene runner: dropped and neighbouring boxes
     const int resolution = GENERATE(64, 128, 256);
     const double dropHeight = GENERATE(1.0, 0.3);
     const auto dir = std::filesystem::temp_directory_path() /
-                     ("buoyancy_interactive_scene_" + std::to_string(resolution) + "_" + std::to_string(int(dropHeight * 10)));
+                     ("buoyancy_interactive_scene_" + std::to_string(::getpid()) + "_" + std::to_string(resolution) + "_" + std::to_string(int(dropHeight * 10)));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     const std::string scene = (dir / "scene.json").string();
