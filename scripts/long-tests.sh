@@ -5,6 +5,8 @@
 # What runs (tests tagged [long]): the 1,000-body × 10^5-substep soak in Gerstner waves with water graphs
 # (tests/reliability/test_soak.cpp), the 3000-case property test (tests/bullet/test_hard_cases.cpp). Each
 # prints its numbers (ctest --verbose); the last results are in the closing note of issue 10.
+# Then long fuzzing: scripts/fuzz-run.sh with FUZZ_SECONDS per target (default 900; FUZZ_SECONDS=0 skips it).
+# (The fuzz build also has one CTest test per target labelled `long`: `ctest -L long` in build-fuzz.)
 # On a shared machine run it with `nice -n 10`; it takes hours on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,3 +18,9 @@ for precision in ${PRECISIONS:-float double}; do
   (cd "$dir" && ctest -L long --verbose --output-on-failure --timeout 36000)
   echo "long tests ($precision): $((SECONDS - start)) s"
 done
+fuzz=${FUZZ_SECONDS:-900}
+if [ "$fuzz" -gt 0 ]; then
+  start=$SECONDS
+  bash scripts/fuzz-run.sh "$fuzz"
+  echo "long fuzzing ($fuzz s per target): $((SECONDS - start)) s"
+fi
