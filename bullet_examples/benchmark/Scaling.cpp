@@ -185,7 +185,9 @@ std::string scalingBreakdownMarkdown(const TriangleMesh& mesh, std::ostream& log
     // the waterPatchNodes² grid nodes (vertices, samples and drag clusters are interpolated from it) and the
     // velocities at waterVelocityProbes probes; without it (no-lod), one height query per vertex/sample and per
     // fine drag sample, one velocity query per fine drag sample.
-    const double heightQueries = double(st.waterPatchNodes) * st.waterPatchNodes;
+    const int patchNodes =
+        btBuoyancyWaterPatchNodes(st, shape->getBoundsRadius(), btGerstnerWaterSurface(sea()).shortestWavelength());
+    const double heightQueries = double(patchNodes) * patchNodes;
     const double velocityQueries = double(st.waterVelocityProbes);
     const double oldHeights = double(points) + double(fineDrag), oldVelocities = double(fineDrag);
     char b[1200];
@@ -195,7 +197,7 @@ std::string scalingBreakdownMarkdown(const TriangleMesh& mesh, std::ostream& log
                   "makes %.0f height queries (a %d×%d patch) and %.0f velocity queries (probes): ≈ %.0f µs of water queries; "
                   "without it (no-lod rows) %.0f height queries (%zu %s + %zu drag samples) and %.0f velocity queries: "
                   "≈ %.0f µs. Budget for P3: ≈ 7 µs of buoyancy per body-substep on 2 cores.\n",
-                  btBuoyancyMethodName(shape->getMethod()), nsH, nsV, heightQueries, st.waterPatchNodes, st.waterPatchNodes,
+                  btBuoyancyMethodName(shape->getMethod()), nsH, nsV, heightQueries, patchNodes, patchNodes,
                   velocityQueries, (heightQueries * nsH + velocityQueries * nsV) / 1000.0, oldHeights, points,
                   exact ? "mesh vertices" : "samples", fineDrag, oldVelocities, (oldHeights * nsH + oldVelocities * nsV) / 1000.0);
     log << "  " << b;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <cmath>
 #include <sstream>
 
 namespace buoyancy::bench {
@@ -153,6 +154,15 @@ std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::v
            << " (" << fmt("%.0f", p3->nsPerBodySubstepTotal) << " ns per body-substep, of which buoyancy "
            << fmt("%.0f", p3->nsPerBodySubstepBuoyancy) << ") → " << (p3->realtimeFactor >= 1 ? "holds" : "FAILS")
            << "; needs " << fmt("%.1f", 1.0 / p3->realtimeFactor) << "× less work to hold.\n";
+        // What fits in real time today (the cost per body is flat in the body count: scaling.csv), and what the second
+        // thread gave at the same body count.
+        md << "- In real time on 2 cores at these settings: about " << fmt("%.0f", std::floor(p3->bodies * p3->realtimeFactor))
+           << " bodies of this model (bodies × real-time factor).\n";
+        for (const auto& one : scaling)
+            if (one.bodies == p3->bodies && one.threads == 1 && one.variant.empty())
+                md << "- 2 threads against 1 at " << one.bodies << " bodies: buoyancy "
+                   << fmt("%.2f", one.nsPerBodySubstepBuoyancy / p3->nsPerBodySubstepBuoyancy) << "× faster, whole step "
+                   << fmt("%.2f", one.nsPerBodySubstepTotal / p3->nsPerBodySubstepTotal) << "× (Bullet's own step stays on one thread).\n";
     }
     // Level of detail on/off in the same run (DESIGN-NOTES 2.5): the "no-lod" rows use dragClusters = 0 and
     // waterPatchNodes = 0 (every fine drag sample, one exact wave query per vertex/sample), the previous default.

@@ -67,7 +67,8 @@ SceneShape readShape(const Reader& r, const json& j, const std::string& key, con
 btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::string& key) {
     r.requireObject(j, key);
     r.allowKeys(j, key, {"method", "texture", "drag_coefficient", "skin_friction", "linear_damping", "added_mass",
-                         "added_mass_coefficient", "error_budget", "drag_clusters", "water_patch_nodes"});
+                         "added_mass_coefficient", "error_budget", "drag_clusters", "water_patch_nodes",
+                         "water_patch_nodes_per_wavelength"});
     btBuoyancySettings b;
     if (j.contains("method")) {
         const std::string m = r.string(j["method"], key + ".method");
@@ -86,6 +87,9 @@ btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::strin
         if (b.waterPatchNodes != 0 && b.waterPatchNodes < 5)
             r.fail(key + ".water_patch_nodes", "must be 0 (exact wave queries) or in 5..64");
     }
+    if (j.contains("water_patch_nodes_per_wavelength"))
+        b.waterPatchNodesPerWavelength = r.number(j["water_patch_nodes_per_wavelength"],
+                                                  key + ".water_patch_nodes_per_wavelength", 0, 1000);
     if (j.contains("drag_coefficient")) b.dragCoefficient = r.number(j["drag_coefficient"], key + ".drag_coefficient", 0, 100);
     if (j.contains("skin_friction")) b.skinFriction = r.number(j["skin_friction"], key + ".skin_friction", 0, 100);
     if (j.contains("linear_damping")) b.linearDamping = r.number(j["linear_damping"], key + ".linear_damping", 0, 100);

@@ -282,9 +282,11 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     const buoyancy::WaterPatch* patch = nullptr;
     // Only for surfaces whose query is an iterative solve (Gerstner's Newton inversion): a grid, FFT or interactive
     // surface answers by a lookup cheaper than the interpolation, and its short ripples would be smoothed away.
+    // Its spacing follows the shortest wave (btBuoyancyWaterPatchNodes).
     if (!flat && m_settings.waterPatchNodes > 0 && dynamic_cast<const btGerstnerWaterSurface*>(water)) {
         try {
-            m_patch.build(*water, bc.x(), bc.z(), br, time, m_settings.waterPatchNodes, m_patchCache);
+            const int nodes = btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength());
+            m_patch.build(*water, bc.x(), bc.z(), br, time, nodes, m_patchCache);
             if (m_patch.finite()) patch = &m_patch;
         } catch (const std::exception&) {
             patch = nullptr;  // a degenerate footprint: fall back to exact queries

@@ -3,6 +3,7 @@
 #include "integrals/BuoyancyMethod.h"
 #include "integrals/LevelOfDetail.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -60,6 +61,7 @@ void btBuoyancySettings::validate() const {
     if (waterPatchNodes != 0 && (waterPatchNodes < 5 || waterPatchNodes > 64))
         throw std::invalid_argument("waterPatchNodes: must be 0 (exact queries) or in 5..64 (got " +
                                     std::to_string(waterPatchNodes) + ")");
+    requireNonNegative(waterPatchNodesPerWavelength, "waterPatchNodesPerWavelength");
     requireNonNegative(errorBudget, "errorBudget");
     requireNonNegative(dragCoefficient, "dragCoefficient");
     requireNonNegative(skinFriction, "skinFriction");
@@ -115,4 +117,16 @@ btBuoyancyLevelOfDetail btBuoyancyPickLevelOfDetail(const btBuoyancySettings& se
                                                                  std::string(b) + " %)");
     }
     return out;
+}
+
+int btBuoyancyWaterPatchNodes(const btBuoyancySettings& settings, double footprintRadius, double shortestWavelength) {
+    if (settings.waterPatchNodes <= 0) return 0;
+    int nodes = settings.waterPatchNodes;
+    const double perWave = settings.waterPatchNodesPerWavelength;
+    if (perWave > 0 && std::isfinite(perWave) && shortestWavelength > 0 && std::isfinite(shortestWavelength) &&
+        footprintRadius > 0 && std::isfinite(footprintRadius)) {
+        const double cells = std::ceil(2.0 * footprintRadius * perWave / shortestWavelength);  // spacing ≤ λ_min / perWave
+        if (cells + 4.0 > double(nodes)) nodes = cells + 4.0 >= 64.0 ? 64 : int(cells) + 4;
+    }
+    return std::min(nodes, 64);
 }

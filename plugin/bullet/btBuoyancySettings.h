@@ -68,9 +68,16 @@ struct btBuoyancySettings {
     /// Wave queries: on a Gerstner surface (whose query is a Newton inversion; grid, FFT and interactive surfaces
     /// answer by a cheaper lookup and are always queried exactly) the water height under the body is queried on a waterPatchNodes ×
     /// waterPatchNodes grid over its footprint and interpolated (buoyancy::WaterPatch, bicubic) instead of
-    /// queried at every vertex / sample. 0 = query every point exactly. 5..64 otherwise; default 8 (the error it
-    /// adds is measured in docs/benchmarks). Flat water is never affected.
+    /// queried at every vertex / sample. 0 = query every point exactly. 5..64 otherwise; default 8, the fewest nodes
+    /// a patch gets (see waterPatchNodesPerWavelength; the error it adds is measured in docs/benchmarks). Flat water
+    /// is never affected.
     int waterPatchNodes = 8;
+    /// Patch resolution against the waves: the grid spacing is at most (shortest wavelength of the surface) / this,
+    /// so a large body in short waves gets more nodes (btBuoyancyWaterPatchNodes; up to 64 per side). The patch's
+    /// error falls like the fourth power of the spacing: measured in the P3 sea (wavelengths 10–60 m) on the 4 m boat
+    /// against exact queries, 9 nodes per 10 m wave (8×8) 0.03–0.05 % of V, 16 (11×11) 0.008 %, 18.5 (12×12)
+    /// 0.003–0.004 % (docs/benchmarks/waves_lod.csv). 0 = the fixed waterPatchNodes. Default 16, finite, ≥ 0.
+    double waterPatchNodesPerWavelength = 16.0;
 
     ///@name Added mass (DESIGN-NOTES 2.7)
     /// Apply added mass m_a = C_a ρ_w V_sub to the linear motion (one scalar, Stonefish-style; rotation has
@@ -92,6 +99,13 @@ btBuoyancyMethod btBuoyancyResolveMethod(const btBuoyancySettings& settings, std
 /// The texture size used for a resolved sampled method: settings.textureSize, or the budget's pick
 /// (errorBudget > 0), or the library default when 0.
 int btBuoyancyResolveTextureSize(const btBuoyancySettings& settings, btBuoyancyMethod resolved);
+
+/// Nodes per side of a body's wave patch (btBuoyancyAction; DESIGN-NOTES 2.5): 0 when settings.waterPatchNodes is 0
+/// (exact queries), else max(waterPatchNodes, ⌈2 r · waterPatchNodesPerWavelength / λ_min⌉ + 4) capped at 64 — the
+/// patch's interior spans 2r with spacing 2r / (nodes − 4) (buoyancy::WaterPatch).
+/// @param footprintRadius     r, half the side of the body's footprint, m (its bounding-sphere radius)
+/// @param shortestWavelength  λ_min of the surface, m (btWaterSurface::shortestWavelength; 0 = unknown: the fixed count)
+int btBuoyancyWaterPatchNodes(const btBuoyancySettings& settings, double footprintRadius, double shortestWavelength);
 
 /// What the automatic level of detail picked for a mesh (issue 9).
 struct btBuoyancyLevelOfDetail {

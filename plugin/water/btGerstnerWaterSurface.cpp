@@ -84,6 +84,8 @@ btGerstnerWaterSurface::btGerstnerWaterSurface(const std::vector<btGerstnerWave>
         v.aw = v.a * v.omega;
         v.qaw = v.qa * v.omega;
         m_amplitudeSum += v.a;
+        if (v.a > 0 && (m_shortestWavelength == 0 || w.wavelength < m_shortestWavelength))
+            m_shortestWavelength = w.wavelength;
         m_loop += v.qa * v.k;
         m_waves.push_back(v);
     }

@@ -68,6 +68,8 @@ public:
     /// Flat only with no waves (or all amplitudes 0).
     bool isFlat(double t, double& outHeight) const override;
     bool isTimeVarying() const override { return m_amplitudeSum > 0; }
+    /// The shortest wavelength among the waves of non-zero amplitude, m (0 with none).
+    double shortestWavelength() const override { return m_shortestWavelength; }
 
     /// Forward parametric surface: the point (x, y, z) of the particle at rest position (x0, z0) at time t, m.
     void surfacePoint(double x0, double z0, double t, double& outX, double& outY, double& outZ) const;
@@ -144,6 +146,7 @@ private:
     std::vector<Wave> m_waves;
     double m_height;
     double m_amplitudeSum = 0;
+    double m_shortestWavelength = 0;  ///< m
     double m_loop = 0;
     double m_tolStep = 1.0;   ///< stepTolerance(), m
     double m_tolFinish = 1.0; ///< finishTolerance(), m

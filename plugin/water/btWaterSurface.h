@@ -70,6 +70,10 @@ public:
     /// True when the surface changes over time (bodies in it are kept awake).
     virtual bool isTimeVarying() const { return false; }
 
+    /// Shortest horizontal length scale of the surface's shape (the shortest wavelength), m; 0 when unknown. Sizes the
+    /// per-body wave patch (btBuoyancySettings::waterPatchNodesPerWavelength).
+    virtual double shortestWavelength() const { return 0.0; }
+
     /// Convenience single-point query, m.
     double height(double x, double z, double t) const {
         double h = 0;

@@ -245,4 +245,67 @@ TEST_CASE("Level-of-detail settings: bad values are refused with the field's nam
     CHECK(message(s).find("errorBudget") != std::string::npos);
     s.errorBudget = std::nan("");
     CHECK(message(s).find("errorBudget") != std::string::npos);
+    s = btBuoyancySettings();
+    s.waterPatchNodesPerWavelength = -1;
+    CHECK(message(s).find("waterPatchNodesPerWavelength") != std::string::npos);
+    s.waterPatchNodesPerWavelength = std::nan("");
+    CHECK(message(s).find("waterPatchNodesPerWavelength") != std::string::npos);
+    s.waterPatchNodesPerWavelength = 0;  // the fixed count: valid
+    CHECK(message(s).empty());
+}
+
+TEST_CASE("Wave patch size: spacing at most the shortest wavelength / nodes per wavelength, 8..64 nodes",
+          "[integrals][lod]") {
+    btBuoyancySettings s;  // 8 nodes at least, 16 per shortest wavelength
+    // spacing 2r / (M − 4) ≤ λ / 16  ⇔  M ≥ 32 r / λ + 4
+    CHECK(btBuoyancyWaterPatchNodes(s, 2.157, 10.0) == 11);  // 32·2.157/10 = 6.9 → 7 cells
+    CHECK(btBuoyancyWaterPatchNodes(s, 0.5, 10.0) == 8);     // 1.6 → 2 cells: the minimum 8 rules
+    CHECK(btBuoyancyWaterPatchNodes(s, 2.5, 10.0) == 12);    // exactly 8 cells
+    CHECK(btBuoyancyWaterPatchNodes(s, 100.0, 10.0) == 64);  // capped
+    CHECK(btBuoyancyWaterPatchNodes(s, 2.157, 0.0) == 8);    // wavelength unknown: the fixed count
+    for (double r : {0.3, 1.0, 2.157, 5.0, 9.0}) {
+        const int m = btBuoyancyWaterPatchNodes(s, r, 10.0);
+        if (m < 64) CHECK(2.0 * r / (m - 4) <= 10.0 / 16.0 + 1e-12);
+    }
+    s.waterPatchNodesPerWavelength = 0;
+    CHECK(btBuoyancyWaterPatchNodes(s, 100.0, 10.0) == 8);
+    s.waterPatchNodes = 0;  // exact queries
+    CHECK(btBuoyancyWaterPatchNodes(s, 2.157, 10.0) == 0);
+}
+
+#include "water/btGerstnerWaterSurface.h"
+
+TEST_CASE("Wave patch sized per wavelength: a 4 m body in 10-60 m waves within 1e-4 of V of exact queries",
+          "[integrals][lod]") {
+    // Issue 9's P3 sea; a 4 x 0.8 x 1.4 m box (the demo boat's extents) heeled and trimmed at several times.
+    const btGerstnerWaterSurface sea({{1.0, 60.0, 1.0, 0.0, 0.5, 0.0},
+                                      {0.6, 35.0, 0.8, 0.6, 0.5, 1.3},
+                                      {0.35, 20.0, -0.3, 1.0, 0.5, 2.1},
+                                      {0.2, 10.0, 0.6, -0.8, 0.5, 0.4}});
+    const TriangleMesh mesh = toTriangleMesh(oracleBox(4.0, 0.8, 1.4));
+    const double V = 4.0 * 0.8 * 1.4;
+    const double r = 0.5 * std::sqrt(16.0 + 0.64 + 1.96);
+    const int adaptive = btBuoyancyWaterPatchNodes(btBuoyancySettings(), r, sea.shortestWavelength());
+    CHECK(sea.shortestWavelength() == 10.0);
+    CHECK(adaptive == 11);
+    double worst[2] = {0, 0};  // fixed 8 nodes, adaptive
+    for (double t : {0.5, 2.3, 4.1, 7.7})
+        for (double heel : {0.0, 0.3}) {
+            const Eigen::Vector3d at(5.0 * t, 0.0, -3.0 * t);
+            const double surface = sea.height(at.x(), at.z(), t);
+            const Eigen::Isometry3d pose = Eigen::Translation3d(at.x(), surface - 0.1, at.z()) *
+                                           Eigen::AngleAxisd(heel, Eigen::Vector3d(1, 0, 0.4).normalized());
+            const HydrostaticsResult exact = clippedHydrostatics(mesh, pose, sea, t, 1000, 9.81, at);
+            for (int k = 0; k < 2; ++k) {
+                btWaterQueryCache cache;
+                WaterPatch patch;
+                patch.build(sea, at.x(), at.z(), r, t, k == 0 ? 8 : adaptive, cache);
+                const HydrostaticsResult lod = clippedHydrostatics(mesh, pose, sea, t, 1000, 9.81, at, &patch);
+                worst[k] = std::max(worst[k], std::abs(lod.submerged_volume - exact.submerged_volume) / V);
+            }
+        }
+    std::printf("4 m box in the P3 sea, worst volume error of V against exact queries: 8x8 patch %.2e, %dx%d %.2e\n",
+                worst[0], adaptive, adaptive, worst[1]);
+    CHECK(worst[1] < 1e-4);
+    CHECK(worst[1] < worst[0]);
 }

@@ -478,6 +478,10 @@ TEST_CASE("bad input: scene files name the file and the key", "[reliability][bad
                       Equals("s.json: bodies[0].buoyancy.texture: value 1000000 out of range [1, 16384]"));
     CHECK_THROWS_WITH(scene("{" + kBox + ", \"density\": 500, \"buoyancy\": {\"drag_coefficient\": -1}}"),
                       Equals("s.json: bodies[0].buoyancy.drag_coefficient: value -1 out of range [0, 100]"));
+    CHECK_THROWS_WITH(scene("{" + kBox + ", \"density\": 500, \"buoyancy\": {\"water_patch_nodes_per_wavelength\": -2}}"),
+                      Equals("s.json: bodies[0].buoyancy.water_patch_nodes_per_wavelength: value -2 out of range [0, 1000]"));
+    CHECK(scene("{" + kBox + ", \"density\": 500, \"buoyancy\": {\"water_patch_nodes_per_wavelength\": 24}}")
+              .bodies[0].buoyancy.waterPatchNodesPerWavelength == 24.0);
     CHECK_THROWS_WITH(scene("{" + kBox + ", \"density\": 500, \"rotation\": {\"axis\": [0, 0, 0], \"degrees\": 30}}"),
                       Equals("s.json: bodies[0].rotation.axis: zero axis"));
     // JSON has no NaN; a number too large for a double is the closest thing.
