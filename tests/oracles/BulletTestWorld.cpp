@@ -62,7 +62,7 @@ void BulletTestWorld::addGround(double h) {
     m_groundShape = std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), btScalar(h));
     btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, m_groundShape.get());
     info.m_friction = 0.8;
-    info.m_rollingFriction = 0.1;   // a seabed, as the scene runner's "ground": sunk round bodies stop rolling
+    info.m_rollingFriction = 0.1;   // a seabed, as the scene runner's "ground" (too weak for heavy bodies: see BulletTestWorld.h)
     info.m_spinningFriction = 0.05; // ... and sunk bodies stop spinning about the vertical
     m_ground = std::make_unique<btRigidBody>(info);
     m_world->addRigidBody(m_ground.get());

@@ -40,7 +40,10 @@ public:
     btFloodingAction& addFlooding(std::size_t i, buoyancy::WaterGraph graph,
                                   buoyancy::PermeableSamples holes = buoyancy::PermeableSamples());
     /// A static ground plane y = h: friction 0.8, with rolling (0.1) and spinning (0.05) friction like the
-    /// scene runner's seabed, so sunk round bodies stop rolling and spinning.
+    /// scene runner's seabed. Bullet 3.24 caps a contact's rolling-friction impulse at the coefficient itself per
+    /// substep, whatever the load, so it slows light round bodies only; and against a plane a heavy polygonal
+    /// prism at 30 Hz can keep rolling (Bullet's convex-vs-plane contact feeds it: tests/bullet/test_hard_cases.cpp,
+    /// PolyhedralSeabed, has the measurements and the polyhedral seabed that stops it).
     void addGround(double h);
 
     /// Check every body's invariants (btBuoyancyCheckBody with positive-definite inertia) after every substep
