@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -36,12 +37,16 @@
 namespace buoyancy {
 namespace {
 
-/// Largest K·ρ (patch curvature bound × node radius) for which a submerged node takes the closed form on waves.
-/// Measured (tests/integrals/TreeHydrostaticsTest.cpp and a sweep over the benchmark shapes in the P3 sea, 16 poses
-/// × times, against clipping every triangle with the same patch): the tree's own volume error at 0.025 / 0.035 / 0.05
-/// / 0.07 is ≤ 0.8e-4 / 1.2e-4 / 2.6e-4 / 15e-4 of V (the duck, the boat, the 3,400-triangle boat), its cost on the
-/// 3,400-triangle boat 55 / 35 / 25 / 19 µs against 52 µs for clipping every triangle.
-constexpr double kMaxCurvatureRadius = 0.035;
+/// Height tolerance of the second-order water expansion over a node, as a fraction of the body's mean thickness V / A
+/// (volume over surface area): a node of radius ρ takes the closed form on waves when the third-order remainder
+/// K₃ ρ³ / 6 (K₃ = WaterPatch::thirdDerivativeBound) is at most kExpansionTolerance · V / A. The remainder is what the
+/// closed form misses per unit of projected area, so the volume it adds is ≲ that × the wetted area, ≲ tolerance × V.
+/// (The earlier rule K ρ ≤ const on the curvature alone let nodes grow like 1/amplitude in low waves of the same
+/// wavelengths, where the third-order term does not shrink as fast: 0.2 % of V on the 3,400-triangle boat at 0.3 of
+/// the P3 sea's amplitudes.) Measured against clipping every triangle with the same patch: see
+/// tests/integrals/TreeHydrostaticsTest.cpp; over the benchmark shapes at 0.1–1 of the P3 sea's amplitudes the tree's
+/// own volume error is ≤ 1.7e-4 of V at 1e-3 (≤ 0.5e-4 at 2e-4, where it no longer pays on the P3 sea itself).
+constexpr double kExpansionTolerance = 1e-3;
 
 /// Packed symmetric index (xx, xy, xz, yy, yz, zz).
 constexpr int kSym[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
@@ -114,12 +119,21 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
     const bool flat = water.isFlat(time, flatH);
     // Without a second-order water model over the nodes (a surface that is neither flat nor given by a patch):
     // clip every triangle (ClippedHydrostatics.cpp).
-    // Clipping every triangle is also what pays on waves whose curvature K makes the typical leaf too large for the
-    // closed form (K × median leaf radius > kMaxCurvatureRadius): the traversal would then visit almost every node and
-    // clip the leaves with the patch's own heights (measured in the P3 sea: the 850-triangle boat, K × median leaf
-    // radius 0.040, 13 µs clipping every triangle, 29 µs through the tree; the 3,400-triangle boat, 0.020, 52 → 35 µs).
-    if (tree.nodes.empty() || (!flat && !(patch && patch->finite())) ||
-        (!flat && patch->curvatureBound() * tree.medianLeafRadius > kMaxCurvatureRadius))
+    // Clipping every triangle is also what pays on waves short enough to make the typical leaf too large for the
+    // closed form (median leaf radius > the largest radius the expansion allows, below): the traversal would then visit
+    // almost every node and clip the leaves with the patch's own heights.
+    if (tree.nodes.empty() || (!flat && !(patch && patch->finite())))
+        return clippedHydrostatics(mesh, pose, water, time, fluidDensity, gravity, torqueReference, patch);
+    // Largest node radius for the closed form on waves (kExpansionTolerance): K₃ ρ³ / 6 ≤ tolerance · V / A.
+    const double thickness = tree.nodes[0].area > 0 ? std::abs(tree.nodes[0].m1.trace()) / 3.0 / tree.nodes[0].area : 0.0;
+    const double K3 = flat ? 0.0 : patch->thirdDerivativeBound();
+    const double maxRadius = K3 > 0 ? std::cbrt(6.0 * kExpansionTolerance * thickness / K3)
+                                    : std::numeric_limits<double>::infinity();
+    // Measured (one evaluation, 16 poses × times, the P3 sea's wavelengths at 0.1–1 of its amplitudes): the tree pays
+    // while the median leaf is at most half the largest radius (duck, duck-x4, torus-fine, the sphere: 1.6–6× faster),
+    // and costs up to 1.8× more than clipping beyond (the 850-triangle boat, median leaf 0.2 m; the 3,400-triangle
+    // boat and the torus in the full P3 sea are within 10 % either way).
+    if (!flat && tree.medianLeafRadius > 0.5 * maxRadius)
         return clippedHydrostatics(mesh, pose, water, time, fluidDensity, gravity, torqueReference, patch);
     if (tree.triangles.size() != mesh.triangles.size() || tree.bounds.size() != tree.nodes.size())
         throw std::invalid_argument("treeHydrostatics: the tree was built for another mesh");
@@ -158,7 +172,7 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
             const double yHalf = std::abs(u.dot(a0)) * b.half[0] + std::abs(u.dot(a1)) * b.half[1] +
                                  std::abs(u.dot(a0.cross(a1))) * b.half[2];
             if (P.y() - yHalf > waterHigh) continue;
-            if (P.y() + yHalf < waterLow && K * rho > kMaxCurvatureRadius && b.right >= 0) {
+            if (P.y() + yHalf < waterLow && rho > maxRadius && b.right >= 0) {
                 stack.push_back(index + 1);
                 stack.push_back(b.right);
                 continue;
@@ -174,10 +188,10 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
         const double spread = std::abs(e.dot(a0)) * b.half[0] + std::abs(e.dot(a1)) * b.half[1] +
                               std::abs(e.dot(a0.cross(a1))) * b.half[2] + 0.5 * K * rho * rho;
         if (c0 - spread >= 0) continue;  // entirely above the water
-        // Entirely below: closed form, if the node is small against the waves' curvature (K ρ ≤ kMaxCurvatureRadius:
-        // the neglected third-order part of the water height over the node grows like ρ³; measured in
+        // Entirely below: closed form, if the node is small enough for the expansion (ρ ≤ maxRadius: the neglected
+        // third-order part of the water height over the node grows like ρ³; measured in
         // tests/integrals/TreeHydrostaticsTest.cpp: the tree adds ≤ 2e-4 of V to the patch's own error).
-        if (c0 + spread <= 0 && K * rho <= kMaxCurvatureRadius) {
+        if (c0 + spread <= 0 && rho <= maxRadius) {
             const MeshMomentNode& n = tree.nodes[std::size_t(index)];
             // The moments are about the double-precision centre: move the expansion there (δ = its world offset).
             const Eigen::Vector3d Pd = R * n.centre + t;
@@ -206,7 +220,7 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
         // water the level; on waves the leaf's second-order expansion when the leaf is small against the curvature (same
         // criterion as above), else the patch's interpolant (a leaf of a few large triangles spans much of the body).
         const double Px = P.x() - r.x(), Pz = P.z() - r.z(), f0r = f0 - r.y();
-        const bool expand = flat || K * rho <= kMaxCurvatureRadius;
+        const bool expand = flat || rho <= maxRadius;
         const Eigen::Vector3d tr = t - r;
         const Eigen::Vector3d* corner = tree.corners.data() + 3 * std::size_t(b.first);
         for (int k = 0; k < b.count; ++k, corner += 3) {

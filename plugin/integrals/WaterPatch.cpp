@@ -70,6 +70,22 @@ void WaterPatch::build(const btWaterSurface& water, double cx, double cz, double
         }
     m_curvature = 1.25 * (std::max(dxx, dzz) + dxz) * m_invH * m_invH;
     if (!std::isfinite(m_curvature)) m_finite = false;
+    // Third-derivative scale (see thirdDerivativeBound): per 4×4 block of nodes, the third differences along x, z and
+    // the two mixed ones (Δxxz over the block's first two z rows, Δxzz its first two x columns), combined as the
+    // worst direction's D³f[d,d,d] ≤ |f_xxx| + 3|f_xxz| + 3|f_xzz| + |f_zzz|.
+    double third = 0;
+    for (int j = 0; j + 3 < nodes; ++j)
+        for (int i = 0; i + 3 < nodes; ++i) {
+            const double xxx = std::abs(F(i + 3, j) - 3 * F(i + 2, j) + 3 * F(i + 1, j) - F(i, j));
+            const double zzz = std::abs(F(i, j + 3) - 3 * F(i, j + 2) + 3 * F(i, j + 1) - F(i, j));
+            const double xxz = std::abs((F(i + 2, j + 1) - 2 * F(i + 1, j + 1) + F(i, j + 1)) -
+                                        (F(i + 2, j) - 2 * F(i + 1, j) + F(i, j)));
+            const double xzz = std::abs((F(i + 1, j + 2) - 2 * F(i + 1, j + 1) + F(i + 1, j)) -
+                                        (F(i, j + 2) - 2 * F(i, j + 1) + F(i, j)));
+            third = std::max(third, xxx + 3 * xxz + 3 * xzz + zzz);
+        }
+    m_third = 1.25 * third * m_invH * m_invH * m_invH;
+    if (!std::isfinite(m_third)) m_finite = false;
 }
 
 

@@ -42,6 +42,10 @@ public:
     /// largest mixed second difference of the nodes) / h². Used to classify moment-tree nodes (DESIGN-NOTES 2.5) as
     /// |f(p + δ) − f(p) − ∇f(p)·δ| ≲ ½ curvatureBound() |δ|²; not a strict bound (see WaterPatch.cpp).
     double curvatureBound() const { return m_curvature; }
+    /// Scale of the interpolant's third derivatives, 1/m²: 1.25 × the largest of |Δxxx| + 3|Δxxz| + 3|Δxzz| + |Δzzz| (third
+    /// differences of the nodes) over h³, so that the second-order expansion about p misses f(p + δ) by
+    /// ≲ thirdDerivativeBound() |δ|³ / 6 (the moment tree's node criterion, DESIGN-NOTES 2.5). Not a strict bound either.
+    double thirdDerivativeBound() const { return m_third; }
 
     /// Lowest and highest node height (the interpolant may overshoot by a few per cent of the node spread), m.
     double minNode() const { return m_min; }
@@ -63,6 +67,7 @@ private:
     double m_x0 = 0, m_z0 = 0, m_h = 1, m_invH = 1;
     double m_min = 0, m_max = 0;
     double m_curvature = 0;
+    double m_third = 0;
     bool m_finite = true;
     std::vector<double> m_qx, m_qz, m_f;
     mutable std::vector<double> m_coef;             ///< 16 coefficients per cell (cell())
