@@ -104,6 +104,56 @@ inline void addWetNode(const MeshMomentNode& n, const Eigen::Vector3d& u, const 
     acc.area += n.area;
 }
 
+/// A corner of a wetted piece in the body frame: position relative to the reference point q_r, s (m), and
+/// D = y − f there (m, ≤ 0 under water; linear over a triangle, as the clip of ClippedHydrostatics.cpp assumes).
+struct BodyCorner {
+    Eigen::Vector3d s;
+    double D;
+};
+
+/// Add the flat triangle (a, b, c), wetted everywhere (D ≤ 0), to the body-frame sums: the same integrals as
+/// WetIntegrals::addTriangle (edge-midpoint rule, exact for the degree ≤ 2 integrands), written in the body frame so
+/// the corners need no rotation (the sums are rotated once at the end, as the wet nodes'). u = world up, body frame.
+inline void addBodyTriangle(const BodyCorner& a, const BodyCorner& b, const BodyCorner& c, const Eigen::Vector3d& u,
+                            NodeSums& acc) {
+    const Eigen::Vector3d A = 0.5 * (b.s - a.s).cross(c.s - a.s);
+    const double Dab = 0.5 * (a.D + b.D), Dbc = 0.5 * (b.D + c.D), Dca = 0.5 * (c.D + a.D);
+    const double sD = (Dab + Dbc + Dca) / 3.0;
+    const double sD2 = (Dab * Dab + Dbc * Dbc + Dca * Dca) / 3.0;
+    const Eigen::Vector3d sDm = (Dab * (a.s + b.s) + Dbc * (b.s + c.s) + Dca * (c.s + a.s)) / 6.0;
+    const double ny = u.dot(A);
+    acc.V += ny * sD;           // ∫ D n_y
+    acc.F += sD * A;            // ∫ D n
+    acc.T += sDm.cross(A);      // ∫ D s × n
+    acc.Q += ny * sDm;          // ∫ s D n_y
+    acc.D2 += ny * sD2;         // ∫ D² n_y
+    acc.Ay += ny;
+    acc.area += A.norm();
+}
+
+/// Clip the triangle (in[0], in[1], in[2]) against D ≤ 0 (Sutherland–Hodgman, D linear along its edges) and add the
+/// wetted part (addBodyTriangle).
+inline void addClippedBodyTriangle(const BodyCorner in[3], const Eigen::Vector3d& u, NodeSums& acc) {
+    const double d0 = in[0].D, d1 = in[1].D, d2 = in[2].D;
+    if (d0 >= 0 && d1 >= 0 && d2 >= 0) return;  // dry (or touching)
+    if (d0 <= 0 && d1 <= 0 && d2 <= 0) {
+        addBodyTriangle(in[0], in[1], in[2], u, acc);
+        return;
+    }
+    BodyCorner poly[4];
+    int n = 0;
+    for (int k = 0; k < 3; ++k) {
+        const BodyCorner& p = in[k];
+        const BodyCorner& q = in[(k + 1) % 3];
+        if (p.D <= 0) poly[n++] = p;
+        if ((p.D < 0 && q.D > 0) || (p.D > 0 && q.D < 0)) {
+            const double w = p.D / (p.D - q.D);
+            poly[n++] = BodyCorner{p.s + w * (q.s - p.s), 0.0};  // on the waterline
+        }
+    }
+    for (int k = 1; k + 1 < n; ++k) addBodyTriangle(poly[0], poly[k], poly[k + 1], u, acc);
+}
+
 }  // namespace
 
 HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
@@ -146,6 +196,7 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
     const Eigen::Vector3d u = R.row(1).transpose();   // world up in the body frame
     const Eigen::Vector3d X = R.row(0).transpose(), Z = R.row(2).transpose();
     const Eigen::Vector3d qr = R.transpose() * (r - t);  // reference point, body frame
+    const double flatOffset = t.y() - flatH;             // flat water: D(q) = u·q + t_y − level
     const double K = flat ? 0.0 : patch->curvatureBound();
     // Every value of the patch's interpolant lies within [waterLow, waterHigh]: the Catmull-Rom weights of a cell sum
     // to 1 and their negative part is at most 2 × 0.125 × 1.125 ≈ 0.28, so it overshoots the node range by at most
@@ -154,8 +205,7 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
     const double waterLow = flat ? flatH : patch->minNode() - 0.5 * nodeSpread;
     const double waterHigh = flat ? flatH : patch->maxNode() + 0.5 * nodeSpread;
 
-    WetIntegrals I;  // leaves, world frame relative to r
-    NodeSums acc;    // wet nodes, body frame
+    NodeSums acc;  // wet nodes and the wetted parts of the straddling leaves' triangles, body frame
     stack.clear();
     stack.push_back(0);
     while (!stack.empty()) {
@@ -216,25 +266,34 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
             stack.push_back(b.right);
             continue;
         }
-        // A straddling leaf: clip its triangles (corners read contiguously). The water height at each corner: in flat
-        // water the level; on waves the leaf's second-order expansion when the leaf is small against the curvature (same
-        // criterion as above), else the patch's interpolant (a leaf of a few large triangles spans much of the body).
-        const double Px = P.x() - r.x(), Pz = P.z() - r.z(), f0r = f0 - r.y();
+        // A straddling leaf: clip its triangles (corners read contiguously) in the body frame. D = y − f at each corner:
+        // in flat water u·q + t_y − level; on waves the leaf's second-order expansion about its centre when the leaf is
+        // small enough (same criterion as above), else the patch's interpolant at the corner's world (x, z) (a leaf of a
+        // few large triangles spans much of the body).
         const bool expand = flat || rho <= maxRadius;
-        const Eigen::Vector3d tr = t - r;
+        const double P0 = P.y() - f0;  // D at the leaf centre c (its expansion, on waves)
+        const Eigen::Vector3d eLeaf = u - fx * X - fz * Z;
         const Eigen::Vector3d* corner = tree.corners.data() + 3 * std::size_t(b.first);
         for (int k = 0; k < b.count; ++k, corner += 3) {
-            PieceVertex in[3];
+            BodyCorner in[3];
             for (int j = 0; j < 3; ++j) {
-                in[j].p = R * corner[j] + tr;
-                const double dx = in[j].p.x() - Px, dz = in[j].p.z() - Pz;
-                in[j].f = expand ? f0r + fx * dx + fz * dz + 0.5 * (fxx * dx * dx + 2.0 * fxz * dx * dz + fzz * dz * dz)
-                                 : patch->height(in[j].p.x() + r.x(), in[j].p.z() + r.z()) - r.y();
+                const Eigen::Vector3d& q = corner[j];
+                in[j].s = q - qr;
+                if (flat) {
+                    in[j].D = u.dot(q) + flatOffset;
+                } else if (expand) {
+                    const Eigen::Vector3d sigma = q - c;
+                    const double xs = X.dot(sigma), zs = Z.dot(sigma);
+                    in[j].D = P0 + eLeaf.dot(sigma) - 0.5 * (fxx * xs * xs + 2.0 * fxz * xs * zs + fzz * zs * zs);
+                } else {
+                    in[j].D = u.dot(q) + t.y() - patch->height(X.dot(q) + t.x(), Z.dot(q) + t.z());
+                }
             }
-            I.addClippedTriangle(in);
+            addClippedBodyTriangle(in, u, acc);
         }
     }
 
+    WetIntegrals I;  // the sums in the world frame relative to r, and the result assembly shared with the clip-all path
     I.V += acc.V;
     I.dA += R * acc.F;
     I.dpxA += R * acc.T;
