@@ -216,11 +216,12 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
         const Eigen::Vector3d P = R * c + t;
         const double rho = b.radius;
         const Eigen::Vector3d a0(b.axes[0], b.axes[1], b.axes[2]), a1(b.axes[3], b.axes[4], b.axes[5]);
+        const Eigen::Vector3d a2 = a0.cross(a1);  // the box's third axis (not stored)
         if (!flat) {
             // Before the (costlier) expansion: the node's box against the range every patch height lies in. Wholly
             // above it: dry. Wholly below it and too large for the closed form: its children, whatever the water does.
             const double yHalf = std::abs(u.dot(a0)) * b.half[0] + std::abs(u.dot(a1)) * b.half[1] +
-                                 std::abs(u.dot(a0.cross(a1))) * b.half[2];
+                                 std::abs(u.dot(a2)) * b.half[2];
             if (P.y() - yHalf > waterHigh) continue;
             if (P.y() + yHalf < waterLow && rho > maxRadius && b.right >= 0) {
                 stack.push_back(index + 1);
@@ -236,7 +237,7 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
         double c0 = P.y() - f0;
         Eigen::Vector3d e = u - fx * X - fz * Z;  // Rᵀ(ŷ − G), body frame
         const double spread = std::abs(e.dot(a0)) * b.half[0] + std::abs(e.dot(a1)) * b.half[1] +
-                              std::abs(e.dot(a0.cross(a1))) * b.half[2] + 0.5 * K * rho * rho;
+                              std::abs(e.dot(a2)) * b.half[2] + 0.5 * K * rho * rho;
         if (c0 - spread >= 0) continue;  // entirely above the water
         // Entirely below: closed form, if the node is small enough for the expansion (ρ ≤ maxRadius: the neglected
         // third-order part of the water height over the node grows like ρ³; measured in
