@@ -282,14 +282,21 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     const buoyancy::WaterPatch* patch = nullptr;
     // Only for surfaces whose query is an iterative solve (Gerstner's Newton inversion): a grid, FFT or interactive
     // surface answers by a lookup cheaper than the interpolation, and its short ripples would be smoothed away.
-    // Its spacing follows the shortest wave (btBuoyancyWaterPatchNodes).
+    // Its spacing follows the shortest wave (btBuoyancyWaterPatchNodes); a patch with at least as many nodes as the
+    // points it would stand for (vertices or samples, and drag clusters) is not built: those are queried exactly.
     if (!flat && m_settings.waterPatchNodes > 0 && dynamic_cast<const btGerstnerWaterSurface*>(water)) {
-        try {
-            const int nodes = btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength());
-            m_patch.build(*water, bc.x(), bc.z(), br, time, nodes, m_patchCache);
-            if (m_patch.finite()) patch = &m_patch;
-        } catch (const std::exception&) {
-            patch = nullptr;  // a degenerate footprint: fall back to exact queries
+        const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength()));
+        const std::size_t points = (m_shape->getMethod() == btBuoyancyMethod::ExactMesh
+                                        ? m_shape->getMesh().vertices.size()
+                                        : getSamplesInUse().size()) +
+                                   m_drag->size();
+        if (nodes * nodes < points) {
+            try {
+                m_patch.build(*water, bc.x(), bc.z(), br, time, int(nodes), m_patchCache);
+                if (m_patch.finite()) patch = &m_patch;
+            } catch (const std::exception&) {
+                patch = nullptr;  // a degenerate footprint: fall back to exact queries
+            }
         }
     }
 

@@ -77,6 +77,8 @@ struct btBuoyancySettings {
     /// error falls like the fourth power of the spacing: measured in the P3 sea (wavelengths 10–60 m) on the 4 m boat
     /// against exact queries, 9 nodes per 10 m wave (8×8) 0.03–0.05 % of V, 16 (11×11) 0.008 %, 18.5 (12×12)
     /// 0.003–0.004 % (docs/benchmarks/waves_lod.csv). 0 = the fixed waterPatchNodes. Default 16, finite, ≥ 0.
+    /// A patch with at least as many nodes as the points it would stand for (the mesh's vertices or the samples, plus
+    /// the drag clusters) is not built: those points are then queried exactly (cheaper, and exact).
     double waterPatchNodesPerWavelength = 16.0;
 
     ///@name Added mass (DESIGN-NOTES 2.7)

@@ -4,6 +4,8 @@
 #include "oracles/BulletTestWorld.h"
 #include "mesh/PrimitiveMeshes.h"
 #include "water/btGerstnerWaterSurface.h"
+#include "bullet/btBulletConvert.h"
+#include "integrals/Hydrostatics.h"
 
 #include <catch2/catch.hpp>
 
@@ -50,4 +52,35 @@ TEST_CASE("a body in waves is kept awake", "[bullet][sleeping]") {
     }
     CHECK_FALSE(everAsleep);
     w.water().setWater(nullptr);
+}
+
+// Issue 9 (btBuoyancySettings::waterPatchNodesPerWavelength): in waves short against the body the patch would need
+// more nodes than the body has points; the action then queries the surface exactly, so its result is the exact clip
+// at its pose (an 8-vertex box in 1.5 m waves: 16 nodes per wavelength over its 1.4 m footprint is a 19×19 patch).
+TEST_CASE("short waves: a low-poly body is queried exactly, not through a larger patch", "[bullet][lod]") {
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(1.0, 0.4, 0.8));
+    btGerstnerWave wave;
+    wave.amplitude = 0.05;
+    wave.wavelength = 1.5;
+    wave.steepness = 0.3;
+    const btGerstnerWaterSurface sea({wave});
+    BulletTestWorld w(&sea);
+    btBuoyantBodySettings body;
+    body.density = 400;
+    btBuoyancySettings settings;
+    settings.dragCoefficient = 0;  // no drag clusters: the points are the 8 vertices
+    settings.linearDamping = 0;
+    w.add(shape, body, makePose(btVector3(0, 0.02, 0)), settings);
+    const int nodes = btBuoyancyWaterPatchNodes(settings, shape->getBoundsRadius(), sea.shortestWavelength());
+    REQUIRE(nodes * nodes >= int(shape->getMesh().vertices.size()));
+    for (int substep = 0; substep < 30; ++substep) {
+        w.step(1, 1, 1.0 / 240);
+        const btBuoyancyResult& r = w.action(0).getLastResult();
+        REQUIRE(r.applied);
+        const Eigen::Isometry3d pose = buoyancy::toEigen(w.rigid(0)->getWorldTransform() * w.body(0).getMeshInComFrame());
+        const buoyancy::HydrostaticsResult exact =
+            buoyancy::clippedHydrostatics(shape->getMesh(), pose, sea, r.time, 1000, 9.81, pose.translation());
+        // Exact queries: the same clip to rounding (a 19×19 patch would differ by its interpolation error, ~1e-5 of V).
+        CHECK(std::abs(r.submergedVolume - exact.submerged_volume) <= 1e-9 * 0.32);
+    }
 }
