@@ -17,7 +17,9 @@
 /// In flat water G = H = 0 and every formula is exact. On waves the dropped terms are O(|H| ρ³) per unit area for a
 /// node of radius ρ (measured against clipping every triangle in tests/integrals/TreeHydrostaticsTest.cpp).
 /// Classification of a node: D ranges over it within c0 ± (Σ_k |e·a_k| h_k + ½ K ρ²) (a_k, h_k its oriented box, K the
-/// patch's curvature scale): entirely above → skipped, entirely below → closed form, else its children / its triangles.
+/// patch's curvature scale): entirely above → skipped, entirely below → closed form (on waves only if its radius keeps
+/// the expansion's third-order remainder within kExpansionTolerance), else its children / its triangles. A straddling
+/// leaf's triangles are clipped in the body frame (D linear over each, from its corners) into the same body-frame sums.
 /// Torque and first moments about r follow from the node's offset c − q_r, q_r = Rᵀ(r − t).
 
 #include "integrals/Hydrostatics.h"
