@@ -45,6 +45,37 @@ namespace buoyancy {
 namespace {
 
 /// Wrap an integer texel index into [0, n).
+/// The PNG `data` without its zero-length IDAT chunks (they hold no image data; dropping them does not change the
+/// image), or an empty vector when there are none. The scan stops at IEND or at the first chunk that runs past the
+/// end of the data (what follows is kept as it is: stb_image reports it).
+/// stb_image 2.27 copies a first, empty IDAT chunk from a null buffer (memcpy(nullptr, …, 0): undefined behaviour
+/// that UBSan reports; found by fuzz_permeability_image, issue 10).
+std::vector<unsigned char> withoutEmptyIdat(const unsigned char* data, std::size_t size) {
+    auto be32 = [&](std::size_t o) {
+        return (std::uint32_t(data[o]) << 24) | (std::uint32_t(data[o + 1]) << 16) | (std::uint32_t(data[o + 2]) << 8) |
+               std::uint32_t(data[o + 3]);
+    };
+    std::vector<std::size_t> drop;  // offsets of the empty IDAT chunks (12 bytes each: length, type, CRC)
+    std::size_t at = 8;             // after the signature
+    while (at + 12 <= size) {
+        const std::size_t length = be32(at);
+        if (length > size - at - 12) break;  // malformed from here on: left to stb_image
+        if (length == 0 && std::equal(data + at + 4, data + at + 8, "IDAT")) drop.push_back(at);
+        if (std::equal(data + at + 4, data + at + 8, "IEND")) break;
+        at += 12 + length;
+    }
+    if (drop.empty()) return {};
+    std::vector<unsigned char> out;
+    out.reserve(size - 12 * drop.size());
+    std::size_t from = 0;
+    for (std::size_t d : drop) {
+        out.insert(out.end(), data + from, data + d);
+        from = d + 12;
+    }
+    out.insert(out.end(), data + from, data + size);
+    return out;
+}
+
 int wrapIndex(long long i, int n) {
     long long r = i % n;
     if (r < 0) r += n;
@@ -118,6 +149,14 @@ PermeabilityImage decodePermeabilityImage(const unsigned char* data, std::size_t
         if (be32(16) == 0 || be32(20) == 0)
             throw std::invalid_argument(name + ": the image has zero size (" + std::to_string(be32(16)) + "x" +
                                         std::to_string(be32(20)) + " texels)");
+    }
+    std::vector<unsigned char> normalised;  // a PNG without empty IDAT chunks (withoutEmptyIdat), when it had some
+    if (size >= 8 && std::equal(kPng, kPng + 8, data)) {
+        normalised = withoutEmptyIdat(data, size);
+        if (!normalised.empty()) {
+            data = normalised.data();
+            size = normalised.size();
+        }
     }
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(data, int(size), &w, &h, &comp)) {

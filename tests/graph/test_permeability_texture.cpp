@@ -31,11 +31,14 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
+#include <vector>
 #include <unistd.h>  // getpid: a private temporary folder per test process
 
 using namespace buoyancy;
@@ -362,4 +365,54 @@ TEST_CASE("scene key permeability.texture: the painted bottom floods, errors nam
                                            Catch::Contains("channel"));
     CHECK_THAT(parseError(""), Catch::Contains("bodies[0].permeability.texture"));
     fs::remove_all(dir);
+}
+
+// Regression (issue 10, found by fuzz_permeability_image): a PNG whose first IDAT chunk is empty made stb_image 2.27
+// copy 0 bytes from a null buffer (undefined behaviour; UBSan stopped the fuzzer). The decoder drops empty IDAT
+// chunks first: they hold no image data, so the image is the same with or without them.
+TEST_CASE("permeability image: empty IDAT chunks change nothing (fuzz regression)", "[graph][fuzz-regression]") {
+    // The fuzzer's input, 99 bytes: a 4 x 3 RGBA PNG with an empty IDAT before a corrupt one.
+    const unsigned char found[] = {
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
+        0x00, 0x04, 0x00, 0x00, 0x00, 0x03, 0x08, 0x06, 0x00, 0x00, 0x00, 0x10, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+        0x00, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x15, 0xc8, 0x00, 0xb4, 0xf4, 0xae, 0xc6, 0x00, 0x00, 0x00, 0xd8,
+        0x43, 0xc4, 0x0b, 0x3b, 0x39, 0xc8, 0x39, 0x07, 0x50, 0x86, 0x2c, 0x01, 0xd6, 0xdd, 0x8a, 0x2a, 0x18, 0x43,
+        0x51, 0xe7, 0xc7, 0x31, 0x14, 0x55, 0x0f, 0xf1, 0x36, 0x16, 0x99, 0x33, 0x3f, 0xb8, 0xec, 0x00, 0x00, 0x00,
+        0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+    // Decodes or is refused with a clear error; never undefined behaviour (the sanitizer build runs this too).
+    try {
+        const PermeabilityImage img = decodePermeabilityImage(found, sizeof found, "found.png");
+        CHECK(img.width == 4);
+        CHECK(img.height == 3);
+    } catch (const std::invalid_argument& e) {
+        CHECK_THAT(e.what(), Catch::Matchers::StartsWith("found.png: "));
+    }
+
+    // A valid PNG with empty IDAT chunks inserted before its first IDAT and before IEND decodes to the same texels.
+    const fs::path dir = tempDir("empty-idat");
+    writePng(dir / "img.png", 3, 2, 3, [](int x, int y, int c) { return c == 0 ? 51 * (3 * y + x) : 9 * c; });
+    std::ifstream in(dir / "img.png", std::ios::binary);
+    const std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    REQUIRE(png.size() > 33);
+    // An empty chunk: length 0, type IDAT, CRC-32 of "IDAT" (ISO 3309, as PNG specifies), computed here.
+    std::uint32_t crc = 0xFFFFFFFFu;
+    for (unsigned char ch : std::string("IDAT")) {
+        crc ^= ch;
+        for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    crc ^= 0xFFFFFFFFu;
+    const unsigned char empty[12] = {0, 0, 0, 0, 'I', 'D', 'A', 'T', (unsigned char)(crc >> 24), (unsigned char)(crc >> 16),
+                                     (unsigned char)(crc >> 8), (unsigned char)crc};
+    std::vector<unsigned char> padded(png.begin(), png.begin() + 33);  // signature + IHDR (stb writes IDAT next)
+    padded.insert(padded.end(), empty, empty + 12);
+    padded.insert(padded.end(), png.begin() + 33, png.end() - 12);  // up to IEND
+    padded.insert(padded.end(), empty, empty + 12);
+    padded.insert(padded.end(), png.end() - 12, png.end());
+    REQUIRE(std::equal(png.begin() + 37, png.begin() + 41, "IDAT"));
+    const PermeabilityImage a = decodePermeabilityImage(png.data(), png.size(), "plain.png");
+    const PermeabilityImage b = decodePermeabilityImage(padded.data(), padded.size(), "padded.png");
+    REQUIRE(b.width == 3);
+    REQUIRE(b.height == 2);
+    CHECK(b.value == a.value);
+    for (int i = 0; i < 6; ++i) CHECK(b.value[std::size_t(i)] == Approx(51.0 * i / 255.0).margin(1e-6));
 }
