@@ -8,6 +8,7 @@
 #include "oracles/PolyhedralOracle.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace buoyancy_test {
@@ -18,6 +19,14 @@ struct ArchimedesErrors {
     double force = 0;   ///< |F − ρgV_oracle ŷ| / (ρ g V_full)
     double torque = 0;  ///< |τ − (c_oracle − ref) × F_oracle| / (ρ g V_full diag)
     double centre = 0;  ///< |C_B − c_oracle| / diag, 0 when under 1e-6 of the volume is wet (C_B undefined)
+
+    /// Keep the larger of each error (a running worst case over many results).
+    void takeWorst(const ArchimedesErrors& e) {
+        volume = std::max(volume, e.volume);
+        force = std::max(force, e.force);
+        torque = std::max(torque, e.torque);
+        centre = std::max(centre, e.centre);
+    }
 };
 
 /// Compare `r` (computed about `ref` with density rho and gravity g) with the oracle's submerged moments `o`.

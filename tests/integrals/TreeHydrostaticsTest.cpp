@@ -130,7 +130,7 @@ TEST_CASE("moment tree: structure and root moments match the divergence theorem 
 TEST_CASE("tree hydrostatics in flat water: the oracle and Archimedes to rounding (4 shapes x 12 poses x 15 levels)",
           "[integrals][tree]") {
     std::mt19937 rng(7);
-    double worstV = 0, worstC = 0, worstF = 0, worstT = 0;
+    ArchimedesErrors worst;
     for (const auto& s : shapes()) {
         const TriangleMesh mesh = toTriangleMesh(s.mesh);
         const MeshMomentTree tree = buildMeshMomentTree(mesh);
@@ -160,17 +160,14 @@ TEST_CASE("tree hydrostatics in flat water: the oracle and Archimedes to roundin
                 CHECK(e.force < 1e-10);
                 CHECK(e.torque < 1e-10);
                 CHECK(e.centre < 1e-9);
-                worstV = std::max(worstV, e.volume);
-                worstF = std::max(worstF, e.force);
-                worstT = std::max(worstT, e.torque);
-                worstC = std::max(worstC, e.centre);
+                worst.takeWorst(e);
                 CHECK(std::abs(r.waterline_area - oracleCapArea(posed, s.mesh.tris, h)) < 1e-10 * diag * diag);
                 CHECK(std::abs(r.wetted_area - c.wetted_area) < 1e-10 * diag * diag);
             }
         }
     }
-    std::printf("tree, flat water, worst vs oracle: volume %.1e of V, CoB %.1e of diag, force %.1e, torque %.1e\n", worstV,
-                worstC, worstF, worstT);
+    std::printf("tree, flat water, worst vs oracle: volume %.1e of V, CoB %.1e of diag, force %.1e, torque %.1e\n",
+                worst.volume, worst.centre, worst.force, worst.torque);
 }
 
 TEST_CASE("tree hydrostatics on Gerstner waves: close to clipping every triangle with exact wave queries",
