@@ -62,6 +62,8 @@ struct NodeSums {
 };
 
 /// Add a node entirely under water (see the file comment). e, Hw (packed H_b, off-diagonals doubled) body frame.
+/// Curved = false: flat water (H = 0; Hw is not read), the same sums without the curvature terms.
+template <bool Curved>
 inline void addWetNode(const MeshMomentNode& n, const Eigen::Vector3d& u, const Eigen::Vector3d& offset, double c0,
                        const Eigen::Vector3d& e, const double Hw[6], NodeSums& acc) {
     // μ2·u and μ1 u
@@ -71,11 +73,13 @@ inline void addWetNode(const MeshMomentNode& n, const Eigen::Vector3d& u, const 
     const double m0u = n.m0.dot(u);
     // ∫ D n (body)
     Eigen::Vector3d F = c0 * n.m0 + n.m1.transpose() * e;
-    for (int ij = 0; ij < 6; ++ij) {
-        const double h = 0.5 * Hw[ij];
-        F.x() -= h * n.m2[ij][0];
-        F.y() -= h * n.m2[ij][1];
-        F.z() -= h * n.m2[ij][2];
+    if (Curved) {
+        for (int ij = 0; ij < 6; ++ij) {
+            const double h = 0.5 * Hw[ij];
+            F.x() -= h * n.m2[ij][0];
+            F.y() -= h * n.m2[ij][1];
+            F.z() -= h * n.m2[ij][2];
+        }
     }
     const double V = u.dot(F);
     // ∫ D s × n ≈ c0 ε:μ1 + Σ_i e_i ∫ s_i (s × n); (s × n)_a = s_{a+1} n_{a+2} − s_{a+2} n_{a+1}
@@ -94,7 +98,8 @@ inline void addWetNode(const MeshMomentNode& n, const Eigen::Vector3d& u, const 
     double eMe = 0, hM = 0;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) eMe += e[i] * e[j] * m2u[kSym[i][j]];
-    for (int ij = 0; ij < 6; ++ij) hM += Hw[ij] * m2u[ij];
+    if (Curved)
+        for (int ij = 0; ij < 6; ++ij) hM += Hw[ij] * m2u[ij];
     const double D2 = c0 * c0 * m0u + 2.0 * c0 * e.dot(m1u) + eMe - c0 * hM;
 
     acc.V += V;
@@ -215,7 +220,8 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
         stack.pop_back();
         const MeshMomentBounds& b = tree.bounds[std::size_t(index)];
         const Eigen::Vector3d c(b.centre[0], b.centre[1], b.centre[2]);
-        const Eigen::Vector3d P = R * c + t;
+        // World centre of the box (flat water needs only its height).
+        const Eigen::Vector3d P = flat ? Eigen::Vector3d(0.0, u.dot(c) + t.y(), 0.0) : Eigen::Vector3d(R * c + t);
         const double rho = b.radius;
         const Eigen::Vector3d a0(b.axes[0], b.axes[1], b.axes[2]), a1(b.axes[3], b.axes[4], b.axes[5]);
         const Eigen::Vector3d a2 = a0.cross(a1);  // the box's third axis (not stored)
@@ -246,6 +252,10 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
         // tests/integrals/TreeHydrostaticsTest.cpp: the tree adds ≤ 2e-4 of V to the patch's own error).
         if (c0 + spread <= 0 && rho <= maxRadius) {
             const MeshMomentNode& n = tree.nodes[std::size_t(index)];
+            if (flat) {  // G = H = 0: D = u·q + t_y − level exactly, no expansion to move
+                addWetNode<false>(n, u, n.centre - qr, u.dot(n.centre) + flatOffset, u, nullptr, acc);
+                continue;
+            }
             // The moments are about the double-precision centre: move the expansion there (δ = its world offset).
             const Eigen::Vector3d Pd = R * n.centre + t;
             const double dx = Pd.x() - P.x(), dz = Pd.z() - P.z();
@@ -261,7 +271,7 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
                     const double h = fxx * X[i] * X[j] + fxz * (X[i] * Z[j] + Z[i] * X[j]) + fzz * Z[i] * Z[j];
                     Hw[kSym[i][j]] = i == j ? h : 2.0 * h;
                 }
-            addWetNode(n, u, n.centre - qr, c0, e, Hw, acc);
+            addWetNode<true>(n, u, n.centre - qr, c0, e, Hw, acc);
             continue;
         }
         if (b.right >= 0) {
@@ -281,7 +291,6 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
             BodyCorner in[3];
             for (int j = 0; j < 3; ++j) {
                 const Eigen::Vector3d& q = corner[j];
-                in[j].s = q - qr;
                 if (flat) {
                     in[j].D = u.dot(q) + flatOffset;
                 } else if (expand) {
@@ -292,6 +301,8 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
                     in[j].D = u.dot(q) + t.y() - patch->height(X.dot(q) + t.x(), Z.dot(q) + t.z());
                 }
             }
+            if (in[0].D >= 0 && in[1].D >= 0 && in[2].D >= 0) continue;  // dry (or touching)
+            for (int j = 0; j < 3; ++j) in[j].s = corner[j] - qr;
             addClippedBodyTriangle(in, u, acc);
         }
     }
