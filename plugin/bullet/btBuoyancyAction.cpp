@@ -280,16 +280,19 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     double flatH = 0;
     const bool flat = water->isFlat(time, flatH);
     const buoyancy::WaterPatch* patch = nullptr;
+    const bool dragOn =
+        m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 || m_settings.linearDamping > 0;
     // Only for surfaces whose query is an iterative solve (Gerstner's Newton inversion): a grid, FFT or interactive
     // surface answers by a lookup cheaper than the interpolation, and its short ripples would be smoothed away.
     // Its spacing follows the shortest wave (btBuoyancyWaterPatchNodes); a patch with at least as many nodes as the
-    // points it would stand for (vertices or samples, and drag clusters) is not built: those are queried exactly.
+    // points it would stand for (vertices or samples, and drag clusters when drag is on) is not built: those are
+    // queried exactly.
     if (!flat && m_settings.waterPatchNodes > 0 && dynamic_cast<const btGerstnerWaterSurface*>(water)) {
         const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength()));
         const std::size_t points = (m_shape->getMethod() == btBuoyancyMethod::ExactMesh
                                         ? m_shape->getMesh().vertices.size()
                                         : getSamplesInUse().size()) +
-                                   m_drag->size();
+                                   (dragOn ? m_drag->size() : 0);
         if (nodes * nodes < points) {
             try {
                 m_patch.build(*water, bc.x(), bc.z(), br, time, int(nodes), m_patchCache);
@@ -337,8 +340,6 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     Eigen::Vector3d v, w;
     dragEvaluationVelocity(h, dt, v, w);
     Eigen::Vector3d dragF = Eigen::Vector3d::Zero(), dragT = Eigen::Vector3d::Zero(), uMean = Eigen::Vector3d::Zero();
-    const bool dragOn =
-        m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 || m_settings.linearDamping > 0;
     if (dragOn && !(onDevice && m_world->getDeviceBackend()->drag(*this, com, v, w, dragF, dragT, uMean)))  // [issue 7]
         computeDrag(pose, patch, com, v, w, rho, time, dragF, dragT, uMean);
 
