@@ -16,6 +16,7 @@ namespace buoyancy {
 
 class WaterPatch;
 struct MeshMomentTree;
+struct VertexShares;
 
 /// Result of one hydrostatic evaluation, world frame.
 struct HydrostaticsResult {
@@ -79,10 +80,22 @@ HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Is
 /// water over a submerged node or a straddling leaf is the patch's second-order expansion about the node centre
 /// (error measured in tests/integrals/TreeHydrostaticsTest.cpp). Non-flat water without a patch, or waves so curved
 /// that the mesh's typical leaf is too large for the expansion (TreeHydrostatics.cpp): clippedHydrostatics.
+/// On waves the leaves too large for the expansion, or no patch: vertexHydrostatics(tree.shares, …) (the clip-all result).
 /// @param tree  buildMeshMomentTree(mesh)
 /// @throws std::invalid_argument for a tree of another mesh, bad density/gravity or a non-finite pose
 HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
                                     const btWaterSurface& water, double time, double fluidDensity, double gravity,
                                     const Eigen::Vector3d& torqueReference, const WaterPatch* patch = nullptr);
+
+/// clippedHydrostatics(mesh, pose, water, time, fluidDensity, gravity, torqueReference, patch) through the per-vertex
+/// shares of the mesh (VertexShares.h, DESIGN-NOTES 2.5): the same water model and the same result to rounding, with
+/// one water height per vertex that can be under water, a few multiply-adds per wet vertex, and an exact clip only
+/// for the triangles that straddle the waterline.
+/// @param shares  buildVertexShares(mesh)
+/// @throws std::invalid_argument for bad density/gravity or a non-finite pose; std::runtime_error for a non-finite
+///         water height or result
+HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::Isometry3d& pose,
+                                      const btWaterSurface& water, double time, double fluidDensity, double gravity,
+                                      const Eigen::Vector3d& torqueReference, const WaterPatch* patch = nullptr);
 
 }  // namespace buoyancy

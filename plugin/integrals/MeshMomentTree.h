@@ -8,6 +8,7 @@
 /// nothing, and only the leaves that straddle the waterline are clipped triangle by triangle. The work per
 /// substep grows with the waterline length, not with the triangle count.
 
+#include "integrals/VertexShares.h"
 #include "mesh/TriangleMesh.h"
 
 #include <Eigen/Geometry>
@@ -59,6 +60,9 @@ struct MeshMomentTree {
     std::vector<Eigen::Vector3d> corners;
     int depth = 0;                              ///< longest root-to-leaf path (nodes)
     double medianLeafRadius = 0;                ///< median bounding-sphere radius of the leaves, m
+    /// The mesh's per-vertex shares (VertexShares.h): the evaluation on waves whose curvature makes the typical leaf
+    /// too large for the closed form (TreeHydrostatics.cpp), and without a patch.
+    VertexShares shares;
 };
 
 /// Build the tree over `mesh`: median split of the triangle centroids along the longest axis of their bounding

@@ -22,6 +22,7 @@
 /// leaf's triangles are clipped in the body frame (D linear over each, from its corners) into the same body-frame sums.
 /// Torque and first moments about r follow from the node's offset c − q_r, q_r = Rᵀ(r − t).
 
+#include "integrals/BodyFrameSums.h"
 #include "integrals/Hydrostatics.h"
 #include "integrals/MeshMomentTree.h"
 #include "integrals/WaterPatch.h"
@@ -52,14 +53,6 @@ constexpr double kExpansionTolerance = 1e-3;
 
 /// Packed symmetric index (xx, xy, xz, yy, yz, zz).
 constexpr int kSym[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
-
-/// Accumulators of the closed-form node terms, body frame (rotated once at the end).
-struct NodeSums {
-    double V = 0, D2 = 0, Ay = 0, area = 0;
-    Eigen::Vector3d F = Eigen::Vector3d::Zero();  ///< Σ ∫ D n, body frame
-    Eigen::Vector3d T = Eigen::Vector3d::Zero();  ///< Σ ∫ D (q − q_r) × n, body frame
-    Eigen::Vector3d Q = Eigen::Vector3d::Zero();  ///< Σ ∫ (q − q_r) D n_y, body frame
-};
 
 /// Add a node entirely under water (see the file comment). e, Hw (packed H_b, off-diagonals doubled) body frame.
 /// Curved = false: flat water (H = 0; Hw is not read), the same sums without the curvature terms.
@@ -111,56 +104,6 @@ inline void addWetNode(const MeshMomentNode& n, const Eigen::Vector3d& u, const 
     acc.area += n.area;
 }
 
-/// A corner of a wetted piece in the body frame: position relative to the reference point q_r, s (m), and
-/// D = y − f there (m, ≤ 0 under water; linear over a triangle, as the clip of ClippedHydrostatics.cpp assumes).
-struct BodyCorner {
-    Eigen::Vector3d s;
-    double D;
-};
-
-/// Add the flat triangle (a, b, c), wetted everywhere (D ≤ 0), to the body-frame sums: the same integrals as
-/// WetIntegrals::addTriangle (edge-midpoint rule, exact for the degree ≤ 2 integrands), written in the body frame so
-/// the corners need no rotation (the sums are rotated once at the end, as the wet nodes'). u = world up, body frame.
-inline void addBodyTriangle(const BodyCorner& a, const BodyCorner& b, const BodyCorner& c, const Eigen::Vector3d& u,
-                            NodeSums& acc) {
-    const Eigen::Vector3d A = 0.5 * (b.s - a.s).cross(c.s - a.s);
-    const double Dab = 0.5 * (a.D + b.D), Dbc = 0.5 * (b.D + c.D), Dca = 0.5 * (c.D + a.D);
-    const double sD = (Dab + Dbc + Dca) / 3.0;
-    const double sD2 = (Dab * Dab + Dbc * Dbc + Dca * Dca) / 3.0;
-    const Eigen::Vector3d sDm = (Dab * (a.s + b.s) + Dbc * (b.s + c.s) + Dca * (c.s + a.s)) / 6.0;
-    const double ny = u.dot(A);
-    acc.V += ny * sD;           // ∫ D n_y
-    acc.F += sD * A;            // ∫ D n
-    acc.T += sDm.cross(A);      // ∫ D s × n
-    acc.Q += ny * sDm;          // ∫ s D n_y
-    acc.D2 += ny * sD2;         // ∫ D² n_y
-    acc.Ay += ny;
-    acc.area += A.norm();
-}
-
-/// Clip the triangle (in[0], in[1], in[2]) against D ≤ 0 (Sutherland–Hodgman, D linear along its edges) and add the
-/// wetted part (addBodyTriangle).
-inline void addClippedBodyTriangle(const BodyCorner in[3], const Eigen::Vector3d& u, NodeSums& acc) {
-    const double d0 = in[0].D, d1 = in[1].D, d2 = in[2].D;
-    if (d0 >= 0 && d1 >= 0 && d2 >= 0) return;  // dry (or touching)
-    if (d0 <= 0 && d1 <= 0 && d2 <= 0) {
-        addBodyTriangle(in[0], in[1], in[2], u, acc);
-        return;
-    }
-    BodyCorner poly[4];
-    int n = 0;
-    for (int k = 0; k < 3; ++k) {
-        const BodyCorner& p = in[k];
-        const BodyCorner& q = in[(k + 1) % 3];
-        if (p.D <= 0) poly[n++] = p;
-        if ((p.D < 0 && q.D > 0) || (p.D > 0 && q.D < 0)) {
-            const double w = p.D / (p.D - q.D);
-            poly[n++] = BodyCorner{p.s + w * (q.s - p.s), 0.0};  // on the waterline
-        }
-    }
-    for (int k = 1; k + 1 < n; ++k) addBodyTriangle(poly[0], poly[k], poly[k + 1], u, acc);
-}
-
 }  // namespace
 
 HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
@@ -174,13 +117,17 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
         throw std::invalid_argument("treeHydrostatics: the pose or the reference point is not finite");
     double flatH = 0;
     const bool flat = water.isFlat(time, flatH);
-    // Without a second-order water model over the nodes (a surface that is neither flat nor given by a patch):
-    // clip every triangle (ClippedHydrostatics.cpp).
-    // Clipping every triangle is also what pays on waves short enough to make the typical leaf too large for the
-    // closed form (median leaf radius > the largest radius the expansion allows, below): the traversal would then visit
-    // almost every node and clip the leaves with the patch's own heights.
-    if (tree.nodes.empty() || (!flat && !(patch && patch->finite())))
+    // Without a second-order water model over the nodes (a surface that is neither flat nor given by a patch): the
+    // clip-all result through the per-vertex shares (VertexHydrostatics.cpp), one exact query per vertex.
+    // The shares are also what pays on waves short enough to make the typical leaf too large for the closed form
+    // (median leaf radius > the largest radius the expansion allows, below): the traversal would then visit almost
+    // every node and clip the leaves with the patch's own heights.
+    if (tree.nodes.empty())
         return clippedHydrostatics(mesh, pose, water, time, fluidDensity, gravity, torqueReference, patch);
+    if (tree.shares.vertexCount() != mesh.vertices.size() || tree.shares.triangleCount() != mesh.triangles.size())
+        throw std::invalid_argument("treeHydrostatics: the tree was built for another mesh");
+    if (!flat && !(patch && patch->finite()))
+        return vertexHydrostatics(tree.shares, pose, water, time, fluidDensity, gravity, torqueReference, nullptr);
     // Largest node radius for the closed form on waves (kExpansionTolerance): K₃ ρ³ / 6 ≤ tolerance · V / A.
     const double thickness = tree.nodes[0].area > 0 ? std::abs(tree.nodes[0].m1.trace()) / 3.0 / tree.nodes[0].area : 0.0;
     const double K3 = flat ? 0.0 : patch->thirdDerivativeBound();
@@ -191,7 +138,7 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
     // and costs up to 1.8× more than clipping beyond (the 850-triangle boat, median leaf 0.2 m; the 3,400-triangle
     // boat and the torus in the full P3 sea are within 10 % either way).
     if (!flat && tree.medianLeafRadius > 0.5 * maxRadius)
-        return clippedHydrostatics(mesh, pose, water, time, fluidDensity, gravity, torqueReference, patch);
+        return vertexHydrostatics(tree.shares, pose, water, time, fluidDensity, gravity, torqueReference, patch);
     if (tree.triangles.size() != mesh.triangles.size() || tree.bounds.size() != tree.nodes.size())
         throw std::invalid_argument("treeHydrostatics: the tree was built for another mesh");
     if (flat && !std::isfinite(flatH)) throw std::runtime_error("treeHydrostatics: the flat water height is not finite");
@@ -307,15 +254,7 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
         }
     }
 
-    WetIntegrals I;  // the sums in the world frame relative to r, and the result assembly shared with the clip-all path
-    I.V += acc.V;
-    I.dA += R * acc.F;
-    I.dpxA += R * acc.T;
-    I.first += R * acc.Q;
-    I.first.y() -= 0.5 * acc.D2;
-    I.Ay += acc.Ay;
-    I.area += acc.area;
-
+    const WetIntegrals I = toWetIntegrals(acc, R);  // world frame relative to r; result shared with the clip-all path
     return I.result(fluidDensity * gravity, r, "treeHydrostatics");
 }
 

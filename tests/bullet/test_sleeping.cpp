@@ -80,7 +80,9 @@ TEST_CASE("short waves: a low-poly body is queried exactly, not through a larger
         const Eigen::Isometry3d pose = buoyancy::toEigen(w.rigid(0)->getWorldTransform() * w.body(0).getMeshInComFrame());
         const buoyancy::HydrostaticsResult exact =
             buoyancy::clippedHydrostatics(shape->getMesh(), pose, sea, r.time, 1000, 9.81, pose.translation());
-        // Exact queries: the same clip to rounding (a 19×19 patch would differ by its interpolation error, ~1e-5 of V).
-        CHECK(std::abs(r.submergedVolume - exact.submerged_volume) <= 1e-9 * 0.32);
+        // Exact queries: the same clip (a 19×19 patch would differ by its interpolation error, ~1e-5 of V). To 1e-7 of V,
+        // not to rounding: the action integrates in the body frame (per-vertex shares) and clippedHydrostatics in the
+        // world frame, and a float build's rotation is orthonormal only to float precision (~6e-8).
+        CHECK(std::abs(r.submergedVolume - exact.submerged_volume) <= 1e-7 * 0.32);
     }
 }

@@ -1,0 +1,211 @@
+/// @file VertexHydrostatics.cpp
+/// Exact-mesh hydrostatics through the per-vertex shares (declared in Hydrostatics.h; formulas in VertexShares.h):
+/// the same water model and the same result as clippedHydrostatics to rounding (the water over each triangle is the
+/// plane through its corners' heights; flat water is exact), at a fraction of its cost. Three passes:
+///  1. each vertex: D_v = y_v − f(x_v, z_v) (body → world by the rows of R; on waves the height is interpolated from
+///     the patch, and only for the vertices that can be under water: y_v ≤ the highest value the patch can take);
+///  2. each vertex with D_v ≤ 0: the shares D_v B_v, D_v T_v, D_v M_v, D_v² B_v, B_v, a_v summed;
+///  3. each triangle: all corners under water → its ∫ D² n_y cross term (A_t (Σ D_i)²); corners on both sides →
+///     the shares its wet corners added are taken back and the triangle is clipped exactly (BodyFrameSums.h).
+/// Triangles entirely above the water cost one test each.
+
+#include "integrals/BodyFrameSums.h"
+#include "integrals/Hydrostatics.h"
+#include "integrals/VertexShares.h"
+#include "integrals/WaterPatch.h"
+#include "water/btWaterSurface.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace buoyancy {
+namespace {
+
+/// Thread-local scratch (grows, never shrinks): D per vertex, and the world (x, z) and index of the vertices whose
+/// water height is needed.
+struct VertexScratch {
+    std::vector<double> D, x, z, f;
+    std::vector<std::int32_t> index;
+};
+
+/// D of a vertex whose height was not interpolated (above every value the patch can take: dry), computed when a
+/// straddling triangle needs it for the crossing point.
+constexpr double kNotComputed = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::Isometry3d& pose,
+                                      const btWaterSurface& water, double time, double fluidDensity, double gravity,
+                                      const Eigen::Vector3d& torqueReference, const WaterPatch* patch) {
+    if (!std::isfinite(fluidDensity) || fluidDensity < 0)
+        throw std::invalid_argument("vertexHydrostatics: fluid density must be finite and ≥ 0, got " +
+                                    std::to_string(fluidDensity));
+    if (!std::isfinite(gravity)) throw std::invalid_argument("vertexHydrostatics: gravity is not finite");
+    if (!pose.matrix().allFinite() || !torqueReference.allFinite())
+        throw std::invalid_argument("vertexHydrostatics: the pose or the reference point is not finite");
+    const std::size_t nv = shares.vertexCount(), nt = shares.triangleCount();
+    if (nv == 0 || nt == 0) return HydrostaticsResult{};
+    double flatH = 0;
+    const bool flat = water.isFlat(time, flatH);
+    if (flat && !std::isfinite(flatH)) throw std::runtime_error("vertexHydrostatics: the flat water height is not finite");
+
+    thread_local VertexScratch sc;
+    if (sc.D.size() < nv) {
+        sc.D.resize(nv);
+        sc.x.resize(nv);
+        sc.z.resize(nv);
+        sc.f.resize(nv);
+        sc.index.resize(nv);
+    }
+    const Eigen::Matrix3d R = pose.linear();
+    const Eigen::Vector3d t = pose.translation();
+    const Eigen::Vector3d& r = torqueReference;
+    const Eigen::Vector3d u = R.row(1).transpose();  // world up in the body frame
+    const Eigen::Vector3d qr = R.transpose() * (r - t);
+    const double r00 = R(0, 0), r01 = R(0, 1), r02 = R(0, 2), r10 = R(1, 0), r11 = R(1, 1), r12 = R(1, 2);
+    const double r20 = R(2, 0), r21 = R(2, 1), r22 = R(2, 2);
+    const double* qx = shares.qx.data();
+    const double* qy = shares.qy.data();
+    const double* qz = shares.qz.data();
+    double* D = sc.D.data();
+
+    // Pass 1: D per vertex.
+    // Every value of the patch's interpolant lies within [minNode − ½ spread, maxNode + ½ spread] (the Catmull-Rom
+    // overshoot, TreeHydrostatics.cpp): a vertex above that is dry without its height. Without a patch (exact queries)
+    // every vertex is queried, as clippedHydrostatics does.
+    const double waterHigh = flat ? flatH
+                             : patch ? patch->maxNode() + 0.5 * (patch->maxNode() - patch->minNode())
+                                     : std::numeric_limits<double>::infinity();
+    std::size_t nq = 0;
+    for (std::size_t v = 0; v < nv; ++v) {
+        const double y = r10 * qx[v] + r11 * qy[v] + r12 * qz[v] + t.y();
+        if (flat) {
+            D[v] = y - flatH;
+        } else if (y > waterHigh) {
+            D[v] = kNotComputed;
+        } else {
+            D[v] = y;
+            sc.x[nq] = r00 * qx[v] + r01 * qy[v] + r02 * qz[v] + t.x();
+            sc.z[nq] = r20 * qx[v] + r21 * qy[v] + r22 * qz[v] + t.z();
+            sc.index[nq++] = std::int32_t(v);
+        }
+    }
+    if (nq > 0) {
+        if (patch)
+            patch->heights(sc.x.data(), sc.z.data(), nq, sc.f.data());  // interpolated (DESIGN-NOTES 2.5)
+        else
+            water.heights(sc.x.data(), sc.z.data(), nq, time, sc.f.data());  // one batch
+        for (std::size_t k = 0; k < nq; ++k) {
+            if (!std::isfinite(sc.f[k]))
+                throw std::runtime_error("vertexHydrostatics: the water surface returned a non-finite height at x=" +
+                                         std::to_string(sc.x[k]) + ", z=" + std::to_string(sc.z[k]));
+            D[sc.index[k]] -= sc.f[k];
+        }
+    }
+
+    // Pass 2: the shares of the vertices under water (D ≤ 0), body frame, moments about the body origin.
+    double Fx = 0, Fy = 0, Fz = 0, Tx = 0, Ty = 0, Tz = 0, Gx = 0, Gy = 0, Gz = 0, Bx = 0, By = 0, Bz = 0, area = 0;
+    double M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    for (std::size_t v = 0; v < nv; ++v) {
+        const double d = D[v];
+        if (!(d <= 0)) continue;
+        const double bx = shares.bx[v], by = shares.by[v], bz = shares.bz[v];
+        Fx += d * bx;
+        Fy += d * by;
+        Fz += d * bz;
+        Tx += d * shares.tx[v];
+        Ty += d * shares.ty[v];
+        Tz += d * shares.tz[v];
+        const double d2 = d * d;
+        Gx += d2 * bx;
+        Gy += d2 * by;
+        Gz += d2 * bz;
+        Bx += bx;
+        By += by;
+        Bz += bz;
+        area += shares.area[v];
+        for (int k = 0; k < 9; ++k) M[k] += d * shares.m[k][v];
+    }
+
+    // Pass 3: triangles. Entirely wet: the (Σ D)² part of ∫ D² n_y. Straddling: take back the wet corners' shares
+    // and clip (the exact wetted part goes into `clipped`, positions relative to q_r).
+    double Sx = 0, Sy = 0, Sz = 0;             // Σ_wet A_t (Σ D_i)²
+    double cQx = 0, cQy = 0, cQz = 0;          // Σ shares of ∫ s D n_y taken back (about the origin), = D_i w_i (A_t·u)
+    NodeSums clipped;
+    const std::int32_t* c0 = shares.corner[0].data();
+    const std::int32_t* c1 = shares.corner[1].data();
+    const std::int32_t* c2 = shares.corner[2].data();
+    for (std::size_t tr = 0; tr < nt; ++tr) {
+        const std::int32_t i0 = c0[tr], i1 = c1[tr], i2 = c2[tr];
+        const double d0 = D[i0], d1 = D[i1], d2 = D[i2];
+        const int wet = int(d0 <= 0) + int(d1 <= 0) + int(d2 <= 0);
+        if (wet == 0) continue;
+        const double ax = shares.ax[tr], ay = shares.ay[tr], az = shares.az[tr];
+        if (wet == 3) {
+            const double s = d0 + d1 + d2, s2 = s * s;
+            Sx += s2 * ax;
+            Sy += s2 * ay;
+            Sz += s2 * az;
+            continue;
+        }
+        const std::int32_t idx[3] = {i0, i1, i2};
+        const Eigen::Vector3d A(ax, ay, az);
+        const Eigen::Vector3d sum(qx[i0] + qx[i1] + qx[i2], qy[i0] + qy[i1] + qy[i2], qz[i0] + qz[i1] + qz[i2]);
+        const double Au = A.dot(u);
+        BodyCorner in[3];
+        for (int k = 0; k < 3; ++k) {
+            const std::int32_t v = idx[k];
+            const Eigen::Vector3d q(qx[v], qy[v], qz[v]);
+            double d = D[v];
+            if (d <= 0) {  // a wet corner: take its shares back (VertexShares.h)
+                const Eigen::Vector3d w = (q + sum) / 12.0;
+                const Eigen::Vector3d wxA = w.cross(A);
+                Fx -= d * ax / 3.0;
+                Fy -= d * ay / 3.0;
+                Fz -= d * az / 3.0;
+                Tx -= d * wxA.x();
+                Ty -= d * wxA.y();
+                Tz -= d * wxA.z();
+                cQx += d * w.x() * Au;
+                cQy += d * w.y() * Au;
+                cQz += d * w.z() * Au;
+                Gx -= d * d * ax / 3.0;
+                Gy -= d * d * ay / 3.0;
+                Gz -= d * d * az / 3.0;
+                Bx -= ax / 3.0;
+                By -= ay / 3.0;
+                Bz -= az / 3.0;
+                area -= shares.absArea[tr] / 3.0;
+            } else if (d == kNotComputed) {  // dry corner without its height: needed for the crossing point
+                const double x = r00 * q.x() + r01 * q.y() + r02 * q.z() + t.x();
+                const double z = r20 * q.x() + r21 * q.y() + r22 * q.z() + t.z();
+                const double y = r10 * q.x() + r11 * q.y() + r12 * q.z() + t.y();
+                d = y - patch->height(x, z);
+                D[v] = d;  // (> 0: above every value of the interpolant)
+            }
+            in[k].s = q - qr;
+            in[k].D = d;
+        }
+        addClippedBodyTriangle(in, u, clipped);
+    }
+
+    // Assembly: the shares of the entirely wet triangles, moved to the reference point q_r, plus the clipped pieces.
+    NodeSums acc = clipped;
+    const Eigen::Vector3d F(Fx, Fy, Fz);
+    const double V = u.dot(F);
+    Eigen::Matrix3d Mv;
+    Mv << M[0], M[1], M[2], M[3], M[4], M[5], M[6], M[7], M[8];
+    acc.F += F;
+    acc.V += V;
+    acc.T += Eigen::Vector3d(Tx, Ty, Tz) - qr.cross(F);                              // ∫ D (q − q_r) × n
+    acc.Q += Mv * u - Eigen::Vector3d(cQx, cQy, cQz) - qr * V;                       // ∫ (q − q_r) D n_y
+    acc.D2 += u.dot(Eigen::Vector3d(Gx, Gy, Gz)) / 4.0 + u.dot(Eigen::Vector3d(Sx, Sy, Sz)) / 12.0;  // ∫ D² n_y
+    acc.Ay += u.dot(Eigen::Vector3d(Bx, By, Bz));
+    acc.area += area;
+    return toWetIntegrals(acc, R).result(fluidDensity * gravity, r, "vertexHydrostatics");
+}
+
+}  // namespace buoyancy
