@@ -117,12 +117,14 @@ std::string runLodStudy(const std::vector<BenchShape>& shapes, const std::vector
     // ---- Exact-mesh: the moment tree against clipping every triangle (DESIGN-NOTES 2.5) ----------------------
     {
         std::FILE* f = openCsv(outDir + "/mesh_tree.csv",
-                               "shape,triangles,water,pose,ns_clip_all,ns_tree,volume_difference_pct,cob_difference_pct\n");
+                               "shape,triangles,water,pose,ns_clip_all,ns_tree,volume_difference_pct,cob_difference_pct,ns_vertex_shares,"
+                               "vertex_difference_pct\n");
         const btGerstnerWaterSurface sea(p3Sea());
         const btFlatWaterSurface flat(0.0);
         md << "- Exact-mesh through the moment tree (`mesh_tree.csv`; one hydrostatic evaluation, the same poses as "
               "speed_vs_error in flat water and at 3 sea states of the P3 sea with the default 8×8 patch; mean time of "
-              "clipping every triangle / the tree, and the worst difference between them):";
+              "clipping every triangle / the tree / the per-vertex shares, and the worst volume difference from clipping every "
+              "triangle):";
         for (const BenchShape& s : shapes) {
             btBuoyancySettings st;
             st.method = btBuoyancyMethod::ExactMesh;
@@ -130,7 +132,7 @@ std::string runLodStudy(const std::vector<BenchShape>& shapes, const std::vector
             const double V = shape->getVolume(), diag = boundingBoxDiagonal(s.mesh);
             const std::vector<BenchPose> poses = benchPoses(s.mesh, quick ? std::vector<double>{0.5} : std::vector<double>{0.1, 0.3, 0.5, 0.7, 0.9},
                                                             quick ? std::vector<double>{0} : std::vector<double>{0, 20, 45});
-            double sum[2][2] = {{0, 0}, {0, 0}}, worst[2] = {0, 0};  // [flat, waves][clip, tree]
+            double sum[2][3] = {{0, 0, 0}, {0, 0, 0}}, worst[2] = {0, 0}, worstVertex[2] = {0, 0};  // [flat, waves][clip, tree, vertex]
             int count[2] = {0, 0};
             int k = 0;
             for (const BenchPose& p : poses)
@@ -147,25 +149,32 @@ std::string runLodStudy(const std::vector<BenchShape>& shapes, const std::vector
                     btWaterQueryCache cache;
                     if (waves) patch.build(sea, bc.x(), bc.z(), shape->getBoundsRadius(), t, 8, cache);
                     const WaterPatch* pp = waves ? &patch : nullptr;
-                    HydrostaticsResult a, b;
+                    HydrostaticsResult a, b, c;
                     const double nsClip = nsPerCall([&] { a = clippedHydrostatics(shape->getMesh(), pose, water, t, kRho, kG, ref, pp); }, quick ? 3 : 10);
                     const double nsTree = nsPerCall([&] {
                         b = treeHydrostatics(shape->getMomentTree(), shape->getMesh(), pose, water, t, kRho, kG, ref, pp);
                     }, quick ? 3 : 10);
+                    const double nsVertex = nsPerCall([&] {
+                        c = vertexHydrostatics(shape->getMomentTree().shares, pose, water, t, kRho, kG, ref, pp);
+                    }, quick ? 3 : 10);
                     const double dV = 100.0 * std::abs(a.submerged_volume - b.submerged_volume) / V;
+                    const double dVertex = 100.0 * std::abs(a.submerged_volume - c.submerged_volume) / V;
                     const double dC = a.submerged_volume > 1e-3 * V ? 100.0 * (a.centre_of_buoyancy - b.centre_of_buoyancy).norm() / diag : 0.0;
-                    std::fprintf(f, "%s,%zu,%s,%s,%.0f,%.0f,%.3g,%.3g\n", s.name.c_str(), s.mesh.triangleCount(),
-                                 waves ? "p3-sea-patch8" : "flat", p.id.c_str(), nsClip, nsTree, dV, dC);
+                    std::fprintf(f, "%s,%zu,%s,%s,%.0f,%.0f,%.3g,%.3g,%.0f,%.3g\n", s.name.c_str(), s.mesh.triangleCount(),
+                                 waves ? "p3-sea-patch8" : "flat", p.id.c_str(), nsClip, nsTree, dV, dC, nsVertex, dVertex);
                     sum[waves][0] += nsClip;
                     sum[waves][1] += nsTree;
+                    sum[waves][2] += nsVertex;
                     worst[waves] = std::max(worst[waves], dV);
+                    worstVertex[waves] = std::max(worstVertex[waves], dVertex);
                     ++count[waves];
                 }
-            char b[300];
-            std::snprintf(b, sizeof b, " `%s` (%zu triangles): flat %.1f → %.1f µs (%.1f× faster, volume difference ≤ %.1g %%), "
-                          "waves %.1f → %.1f µs (%.1f×, ≤ %.2g %%);", s.name.c_str(), s.mesh.triangleCount(),
-                          sum[0][0] / count[0] / 1000.0, sum[0][1] / count[0] / 1000.0, sum[0][0] / sum[0][1], worst[0],
-                          sum[1][0] / count[1] / 1000.0, sum[1][1] / count[1] / 1000.0, sum[1][0] / sum[1][1], worst[1]);
+            char b[400];
+            std::snprintf(b, sizeof b, " `%s` (%zu triangles): flat %.1f / %.1f / %.1f µs (tree ≤ %.1g %%, shares ≤ %.1g %%), "
+                          "waves %.1f / %.1f / %.1f µs (tree ≤ %.2g %%, shares ≤ %.1g %%);", s.name.c_str(), s.mesh.triangleCount(),
+                          sum[0][0] / count[0] / 1000.0, sum[0][1] / count[0] / 1000.0, sum[0][2] / count[0] / 1000.0, worst[0],
+                          worstVertex[0], sum[1][0] / count[1] / 1000.0, sum[1][1] / count[1] / 1000.0,
+                          sum[1][2] / count[1] / 1000.0, worst[1], worstVertex[1]);
             md << b;
             log << "  mesh tree " << s.name << " done\n";
         }

@@ -133,11 +133,12 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
     const double K3 = flat ? 0.0 : patch->thirdDerivativeBound();
     const double maxRadius = K3 > 0 ? std::cbrt(6.0 * kExpansionTolerance * thickness / K3)
                                     : std::numeric_limits<double>::infinity();
-    // Measured (one evaluation, 16 poses × times, the P3 sea's wavelengths at 0.1–1 of its amplitudes): the tree pays
-    // while the median leaf is at most half the largest radius (duck, duck-x4, torus-fine, the sphere: 1.6–6× faster),
-    // and costs up to 1.8× more than clipping beyond (the 850-triangle boat, median leaf 0.2 m; the 3,400-triangle
-    // boat and the torus in the full P3 sea are within 10 % either way).
-    if (!flat && tree.medianLeafRadius > 0.5 * maxRadius)
+    // Measured (one evaluation, 24 poses × times in the P3 sea, the patch sized as the action sizes it; mean ratio of the
+    // median leaf radius to the largest radius): the traversal pays while the median leaf is at most ≈ 0.35 of the
+    // largest radius (duck-x4 0.19: 51 µs against 106 through the shares; torus-fine 0.23: 139 against 170; the sphere
+    // 0.30: 22 against 28), the per-vertex shares beyond (the duck 0.38: 28 against 34; the 3,400-triangle boat 0.55,
+    // the torus 0.62, the 850-triangle boat 1.1: within 5 %).
+    if (!flat && tree.medianLeafRadius > 0.35 * maxRadius)
         return vertexHydrostatics(tree.shares, pose, water, time, fluidDensity, gravity, torqueReference, patch);
     if (tree.triangles.size() != mesh.triangles.size() || tree.bounds.size() != tree.nodes.size())
         throw std::invalid_argument("treeHydrostatics: the tree was built for another mesh");

@@ -1,12 +1,14 @@
 /// @file VertexHydrostatics.cpp
 /// Exact-mesh hydrostatics through the per-vertex shares (declared in Hydrostatics.h; formulas in VertexShares.h):
 /// the same water model and the same result as clippedHydrostatics to rounding (the water over each triangle is the
-/// plane through its corners' heights; flat water is exact), at a fraction of its cost. Three passes:
+/// plane through its corners' heights; flat water is exact), at a fraction of its cost. Four passes:
 ///  1. each vertex: D_v = y_v − f(x_v, z_v) (body → world by the rows of R; on waves the height is interpolated from
 ///     the patch, and only for the vertices that can be under water: y_v ≤ the highest value the patch can take);
 ///  2. each vertex with D_v ≤ 0: the shares D_v B_v, D_v T_v, D_v M_v, D_v² B_v, B_v, a_v summed;
 ///  3. each triangle: all corners under water → its ∫ D² n_y cross term (A_t (Σ D_i)²); corners on both sides →
-///     the shares its wet corners added are taken back and the triangle is clipped exactly (BodyFrameSums.h).
+///     listed;
+///  4. the straddling triangles listed in pass 3: the shares their wet corners added are taken back and they are
+///     clipped exactly (BodyFrameSums.h).
 /// Triangles entirely above the water cost one test each.
 
 #include "integrals/BodyFrameSums.h"
@@ -29,6 +31,7 @@ namespace {
 struct VertexScratch {
     std::vector<double> D, x, z, f;
     std::vector<std::int32_t> index;
+    std::vector<std::int32_t> straddling;  ///< triangles with corners on both sides of the water
 };
 
 /// D of a vertex whose height was not interpolated (above every value the patch can take: dry), computed when a
@@ -60,6 +63,7 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
         sc.f.resize(nv);
         sc.index.resize(nv);
     }
+    if (sc.straddling.size() < nt) sc.straddling.resize(nt);
     const Eigen::Matrix3d R = pose.linear();
     const Eigen::Vector3d t = pose.translation();
     const Eigen::Vector3d& r = torqueReference;
@@ -130,29 +134,38 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
         for (int k = 0; k < 9; ++k) M[k] += d * shares.m[k][v];
     }
 
-    // Pass 3: triangles. Entirely wet: the (Σ D)² part of ∫ D² n_y. Straddling: take back the wet corners' shares
-    // and clip (the exact wetted part goes into `clipped`, positions relative to q_r).
-    double Sx = 0, Sy = 0, Sz = 0;             // Σ_wet A_t (Σ D_i)²
-    double cQx = 0, cQy = 0, cQz = 0;          // Σ shares of ∫ s D n_y taken back (about the origin), = D_i w_i (A_t·u)
-    NodeSums clipped;
+    // Pass 3: triangles. Entirely wet: the (Σ D)² part of ∫ D² n_y. Straddling: listed, then (pass 4) their wet
+    // corners' shares are taken back and they are clipped (the exact wetted part goes into `clipped`, positions
+    // relative to q_r). Kept apart so that this loop, which sees every triangle, carries few values.
+    double Sx = 0, Sy = 0, Sz = 0;  // Σ_wet A_t (Σ D_i)²
     const std::int32_t* c0 = shares.corner[0].data();
     const std::int32_t* c1 = shares.corner[1].data();
     const std::int32_t* c2 = shares.corner[2].data();
+    const double* ax = shares.ax.data();
+    const double* ay = shares.ay.data();
+    const double* az = shares.az.data();
+    std::int32_t* straddling = sc.straddling.data();
+    std::size_t ns = 0;
     for (std::size_t tr = 0; tr < nt; ++tr) {
-        const std::int32_t i0 = c0[tr], i1 = c1[tr], i2 = c2[tr];
-        const double d0 = D[i0], d1 = D[i1], d2 = D[i2];
+        const double d0 = D[c0[tr]], d1 = D[c1[tr]], d2 = D[c2[tr]];
         const int wet = int(d0 <= 0) + int(d1 <= 0) + int(d2 <= 0);
-        if (wet == 0) continue;
-        const double ax = shares.ax[tr], ay = shares.ay[tr], az = shares.az[tr];
         if (wet == 3) {
             const double s = d0 + d1 + d2, s2 = s * s;
-            Sx += s2 * ax;
-            Sy += s2 * ay;
-            Sz += s2 * az;
-            continue;
+            Sx += s2 * ax[tr];
+            Sy += s2 * ay[tr];
+            Sz += s2 * az[tr];
+        } else if (wet > 0) {
+            straddling[ns++] = std::int32_t(tr);
         }
+    }
+    // Pass 4: the straddling triangles.
+    double cQx = 0, cQy = 0, cQz = 0;  // Σ shares of ∫ s D n_y taken back (about the origin), = D_i w_i (A_t·u)
+    NodeSums clipped;
+    for (std::size_t k = 0; k < ns; ++k) {
+        const std::size_t tr = std::size_t(straddling[k]);
+        const std::int32_t i0 = c0[tr], i1 = c1[tr], i2 = c2[tr];
         const std::int32_t idx[3] = {i0, i1, i2};
-        const Eigen::Vector3d A(ax, ay, az);
+        const Eigen::Vector3d A(ax[tr], ay[tr], az[tr]);
         const Eigen::Vector3d sum(qx[i0] + qx[i1] + qx[i2], qy[i0] + qy[i1] + qy[i2], qz[i0] + qz[i1] + qz[i2]);
         const double Au = A.dot(u);
         BodyCorner in[3];
@@ -163,21 +176,21 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
             if (d <= 0) {  // a wet corner: take its shares back (VertexShares.h)
                 const Eigen::Vector3d w = (q + sum) / 12.0;
                 const Eigen::Vector3d wxA = w.cross(A);
-                Fx -= d * ax / 3.0;
-                Fy -= d * ay / 3.0;
-                Fz -= d * az / 3.0;
+                Fx -= d * A.x() / 3.0;
+                Fy -= d * A.y() / 3.0;
+                Fz -= d * A.z() / 3.0;
                 Tx -= d * wxA.x();
                 Ty -= d * wxA.y();
                 Tz -= d * wxA.z();
                 cQx += d * w.x() * Au;
                 cQy += d * w.y() * Au;
                 cQz += d * w.z() * Au;
-                Gx -= d * d * ax / 3.0;
-                Gy -= d * d * ay / 3.0;
-                Gz -= d * d * az / 3.0;
-                Bx -= ax / 3.0;
-                By -= ay / 3.0;
-                Bz -= az / 3.0;
+                Gx -= d * d * A.x() / 3.0;
+                Gy -= d * d * A.y() / 3.0;
+                Gz -= d * d * A.z() / 3.0;
+                Bx -= A.x() / 3.0;
+                By -= A.y() / 3.0;
+                Bz -= A.z() / 3.0;
                 area -= shares.absArea[tr] / 3.0;
             } else if (d == kNotComputed) {  // dry corner without its height: needed for the crossing point
                 const double x = r00 * q.x() + r01 * q.y() + r02 * q.z() + t.x();
