@@ -5,6 +5,7 @@
 #include "bullet/btBuoyancyInvariants.h"
 #include "bullet/btBuoyancyWorld.h"
 #include "bullet/btBuoyantBodyBuilder.h"
+#include "integrals/DragKernel.h"
 #include "integrals/SampleFormulas.h"
 #include "opencl/btBuoyancyDeviceBackend.h"
 #include "water/btGerstnerWaterSurface.h"
@@ -167,26 +168,40 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
             m_uz[i] = m_puz[j];
         }
     }
-    const double kd = 0.5 * density * m_settings.dragCoefficient;
-    const double kf = 0.5 * density * m_settings.skinFriction;
-    const double kl = density * m_settings.linearDamping;
-    // [issue 7, owner ocl] the per-sample drag lives in integrals/SampleFormulas.h, shared with the OpenCL kernels.
-    namespace fm = buoyancy::formulas;
-    double part[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-    const double vb[3] = {v.x(), v.y(), v.z()}, wb[3] = {w.x(), w.y(), w.z()};
-    const double Rrow[9] = {R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2)};
-    for (std::size_t i = 0; i < n; ++i) {
-        // Wet fraction: the linear ramp over the cluster's vertical half extent (SampleFormulas.h).
-        const double wet = fm::bb_drag_wet_ramp(m_dhalf[i], m_dh[i] - m_dy[i]);
-        if (!(wet > 0)) continue;
-        const double r[3] = {m_dx[i] - com.x(), m_dy[i] - com.y(), m_dz[i] - com.z()};
-        const double u[3] = {m_ux[i], m_uy[i], m_uz[i]};
-        // Spread of the cluster (DESIGN-NOTES 2.5): a two-point rule along n × ω (bb_drag_cluster_accumulate,
-        // integrals/SampleFormulas.h, shared with the OpenCL kernel: issue 7).
-        const double C[6] = {c.cxx[i], c.cxy[i], c.cxz[i], c.cyy[i], c.cyz[i], c.czz[i]};
-        fm::bb_drag_cluster_accumulate(Rrow, C, r, vb, wb, u, m_dax[i], m_day[i], m_daz[i], c.area[i], wet, kd, kf, kl,
-                                       part);
+    // [issue 7, owner ocl] the per-sample drag lives in integrals/SampleFormulas.h, shared with the OpenCL kernels;
+    // the CPU sums it several clusters per instruction (integrals/DragKernel.h, the same formulas lane by lane).
+    buoyancy::DragMotion motion;
+    motion.kd = 0.5 * density * m_settings.dragCoefficient;
+    motion.kf = 0.5 * density * m_settings.skinFriction;
+    motion.kl = density * m_settings.linearDamping;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) motion.R[3 * i + j] = R(i, j);
+        motion.com[i] = com[i];
+        motion.v[i] = v[i];
+        motion.w[i] = w[i];
     }
+    buoyancy::DragClusterBatch batch;
+    batch.n = n;
+    batch.x = m_dx.data();
+    batch.y = m_dy.data();
+    batch.z = m_dz.data();
+    batch.ax = m_dax.data();
+    batch.ay = m_day.data();
+    batch.az = m_daz.data();
+    batch.area = c.area.data();
+    batch.cxx = c.cxx.data();
+    batch.cxy = c.cxy.data();
+    batch.cxz = c.cxz.data();
+    batch.cyy = c.cyy.data();
+    batch.cyz = c.cyz.data();
+    batch.czz = c.czz.data();
+    batch.halfHeight = m_dhalf.data();
+    batch.waterHeight = m_dh.data();
+    batch.ux = m_ux.data();
+    batch.uy = m_uy.data();
+    batch.uz = m_uz.data();
+    double part[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    buoyancy::accumulateClusterDrag(batch, motion, part);
     force = Eigen::Vector3d(part[0], part[1], part[2]);
     torque = Eigen::Vector3d(part[3], part[4], part[5]);
     const Eigen::Vector3d uSum(part[6], part[7], part[8]);

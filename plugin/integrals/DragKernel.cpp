@@ -1,0 +1,115 @@
+/// @file DragKernel.cpp
+/// The drag sum over the clusters, several per instruction (DragKernel.h). Per lane the formulas of
+/// SampleFormulas.h: the wet fraction bb_drag_wet_ramp, the two-point rule of bb_drag_cluster_accumulate (the cluster
+/// split into two halves at ± R C g / sqrt(gᵀ C g), g = Rᵀ(n × ω)), and bb_drag_accumulate at each point. A cluster
+/// without a spread along n × ω takes both halves at its centre, which is the single-point sum of the scalar formula
+/// split in two equal parts (every term is linear in the area vector and the area). Branches become masks; a lane
+/// whose divisor is zero divides by 1 and is masked out, so no lane raises a floating-point exception the scalar
+/// code would not. Clusters beyond the last full vector go through the scalar formulas.
+
+#include "integrals/DragKernel.h"
+
+#include "integrals/SampleFormulas.h"
+#include "water/VectorMath.h"
+
+#include <algorithm>
+#include <cmath>
+
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+#include <immintrin.h>
+#define BB_DRAG_X86 1
+#endif
+
+// GCC reports the wide vector types' ABI at the end of the file, whatever is pushed and popped: ignored for the whole
+// file (every such function is force-inlined into code built for its width).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace buoyancy {
+namespace {
+
+using namespace vmath;
+
+#ifdef BB_DRAG_X86
+#define BB_DRAG_SQRT(x) (v2d) _mm_sqrt_pd((__m128d)(x))
+#else
+BB_VM_INLINE v2d sqrtLanes(const v2d& x) { return v2d{std::sqrt(x[0]), std::sqrt(x[1])}; }
+#define BB_DRAG_SQRT(x) sqrtLanes(x)
+#endif
+namespace sse2 {
+using V = v2d;
+#include "integrals/DragKernelBody.inl"
+}  // namespace sse2
+#undef BB_DRAG_SQRT
+#ifdef BB_DRAG_X86
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#define BB_DRAG_SQRT(x) (v4d) _mm256_sqrt_pd((__m256d)(x))
+namespace avx2 {
+using V = v4d;
+#include "integrals/DragKernelBody.inl"
+}  // namespace avx2
+#undef BB_DRAG_SQRT
+#pragma GCC pop_options
+#pragma GCC push_options
+#pragma GCC target("avx512f")
+#define BB_DRAG_SQRT(x) (v8d) _mm512_maskz_sqrt_pd(__mmask8(0xff), (__m512d)(x))
+namespace avx512 {
+using V = v8d;
+#include "integrals/DragKernelBody.inl"
+}  // namespace avx512
+#undef BB_DRAG_SQRT
+#pragma GCC pop_options
+#endif
+
+std::size_t runSse2(const DragClusterBatch& c, const DragMotion& m, double part[10]) { return sse2::run(c, m, part); }
+#ifdef BB_DRAG_X86
+__attribute__((target("avx2"))) std::size_t runAvx2(const DragClusterBatch& c, const DragMotion& m, double part[10]) {
+    return avx2::run(c, m, part);
+}
+__attribute__((target("avx512f"))) std::size_t runAvx512(const DragClusterBatch& c, const DragMotion& m,
+                                                        double part[10]) {
+    return avx512::run(c, m, part);
+}
+#endif
+
+int detectLanes() {
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f")) return 8;
+    if (__builtin_cpu_supports("avx2")) return 4;
+#endif
+    return 2;
+}
+
+}  // namespace
+
+int dragKernelLanes() {
+    static const int lanes = detectLanes();
+    return lanes;
+}
+
+void accumulateClusterDrag(const DragClusterBatch& c, const DragMotion& m, double part[10], int lanes) {
+    std::size_t done = 0;
+    const int width = lanes <= 0 ? dragKernelLanes() : std::min(lanes, dragKernelLanes());
+#ifdef BB_DRAG_X86
+    if (width >= 8)
+        done = runAvx512(c, m, part);
+    else if (width >= 4)
+        done = runAvx2(c, m, part);
+    else
+#endif
+        done = runSse2(c, m, part);
+    // The last clusters one by one through the scalar formulas.
+    namespace fm = formulas;
+    for (std::size_t i = done; i < c.n; ++i) {
+        const double wet = fm::bb_drag_wet_ramp(c.halfHeight[i], c.waterHeight[i] - c.y[i]);
+        if (!(wet > 0)) continue;
+        const double r[3] = {c.x[i] - m.com[0], c.y[i] - m.com[1], c.z[i] - m.com[2]};
+        const double u[3] = {c.ux[i], c.uy[i], c.uz[i]};
+        const double C[6] = {c.cxx[i], c.cxy[i], c.cxz[i], c.cyy[i], c.cyz[i], c.czz[i]};
+        fm::bb_drag_cluster_accumulate(m.R, C, r, m.v, m.w, u, c.ax[i], c.ay[i], c.az[i], c.area[i], wet, m.kd, m.kf,
+                                       m.kl, part);
+    }
+}
+
+}  // namespace buoyancy
