@@ -4,7 +4,8 @@
 /// plane through its corners' heights; flat water is exact), at a fraction of its cost. Four passes:
 ///  1. each vertex: D_v = y_v − f(x_v, z_v) (body → world by the rows of R; on waves the height is interpolated from
 ///     the patch, and only for the vertices that can be under water: y_v ≤ the highest value the patch can take);
-///  2. each vertex with D_v ≤ 0: the shares D_v B_v, D_v T_v, D_v M_v, D_v² B_v, B_v, a_v summed;
+///  2. each vertex with D_v ≤ 0: the shares D_v B_v, D_v T_v, D_v M_v, D_v² B_v, B_v, a_v summed (several vertices
+///     per instruction: SSE2, AVX2 or AVX-512 chosen at run time, VertexSharesKernel.inl);
 ///  3. each triangle: all corners under water → its ∫ D² n_y cross term (A_t (Σ D_i)²); corners on both sides →
 ///     listed;
 ///  4. the straddling triangles listed in pass 3: the shares their wet corners added are taken back and they are
@@ -15,6 +16,7 @@
 #include "integrals/Hydrostatics.h"
 #include "integrals/VertexShares.h"
 #include "integrals/WaterPatch.h"
+#include "water/VectorMath.h"
 #include "water/btWaterSurface.h"
 
 #include <cmath>
@@ -22,6 +24,14 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+#define BB_VERTEX_X86 1
+#endif
+
+// The wide vector types' ABI note is reported at the end of the file: ignored for the whole file (every such function
+// is force-inlined into code built for its width).
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace buoyancy {
 namespace {
@@ -37,6 +47,80 @@ struct VertexScratch {
 /// D of a vertex whose height was not interpolated (above every value the patch can take: dry), computed when a
 /// straddling triangle needs it for the crossing point.
 constexpr double kNotComputed = std::numeric_limits<double>::infinity();
+
+/// Layout of the pass-2 sums: Σ D B (force), Σ D T (torque about the origin), Σ D² B, Σ B, Σ a, Σ D M (row-major).
+enum ShareSum { kFx, kFy, kFz, kTx, kTy, kTz, kGx, kGy, kGz, kBx, kBy, kBz, kArea, kM, kShareSums = kM + 9 };
+
+using namespace vmath;
+namespace sse2 {
+using V = v2d;
+#include "integrals/VertexSharesKernel.inl"
+}  // namespace sse2
+#ifdef BB_VERTEX_X86
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace avx2 {
+using V = v4d;
+#include "integrals/VertexSharesKernel.inl"
+}  // namespace avx2
+#pragma GCC pop_options
+#pragma GCC push_options
+#pragma GCC target("avx512f")
+namespace avx512 {
+using V = v8d;
+#include "integrals/VertexSharesKernel.inl"
+}  // namespace avx512
+#pragma GCC pop_options
+__attribute__((target("avx2"))) std::size_t sumWetSharesAvx2(const VertexShares& s, const double* D, std::size_t n,
+                                                            double* out) {
+    return avx2::sumWetShares(s, D, n, out);
+}
+__attribute__((target("avx512f"))) std::size_t sumWetSharesAvx512(const VertexShares& s, const double* D, std::size_t n,
+                                                                 double* out) {
+    return avx512::sumWetShares(s, D, n, out);
+}
+#endif
+
+/// Widest SIMD the CPU runs (8, 4 or 2 doubles), as for the Gerstner queries.
+int cpuLanes() {
+#ifdef BB_VERTEX_X86
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f")) return 8;
+    if (__builtin_cpu_supports("avx2")) return 4;
+#endif
+    return 2;
+}
+
+/// Pass 2 (see the file comment): the shares of every vertex with D ≤ 0, several vertices per instruction, the last
+/// ones one by one.
+void sumWetShares(const VertexShares& s, const double* D, std::size_t n, double* out) {
+    static const int lanes = cpuLanes();
+    std::size_t done = 0;
+#ifdef BB_VERTEX_X86
+    if (lanes == 8)
+        done = sumWetSharesAvx512(s, D, n, out);
+    else if (lanes == 4)
+        done = sumWetSharesAvx2(s, D, n, out);
+    else
+#endif
+        done = sse2::sumWetShares(s, D, n, out);
+    (void)lanes;
+    for (std::size_t v = done; v < n; ++v) {
+        const double d = D[v];
+        if (!(d <= 0)) continue;
+        const double b[3] = {s.bx[v], s.by[v], s.bz[v]};
+        for (int k = 0; k < 3; ++k) {
+            out[kFx + k] += d * b[k];
+            out[kGx + k] += d * d * b[k];
+            out[kBx + k] += b[k];
+        }
+        out[kTx] += d * s.tx[v];
+        out[kTy] += d * s.ty[v];
+        out[kTz] += d * s.tz[v];
+        out[kArea] += s.area[v];
+        for (int k = 0; k < 9; ++k) out[kM + k] += d * s.m[k][v];
+    }
+}
 
 }  // namespace
 
@@ -111,28 +195,12 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
     }
 
     // Pass 2: the shares of the vertices under water (D ≤ 0), body frame, moments about the body origin.
-    double Fx = 0, Fy = 0, Fz = 0, Tx = 0, Ty = 0, Tz = 0, Gx = 0, Gy = 0, Gz = 0, Bx = 0, By = 0, Bz = 0, area = 0;
-    double M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    for (std::size_t v = 0; v < nv; ++v) {
-        const double d = D[v];
-        if (!(d <= 0)) continue;
-        const double bx = shares.bx[v], by = shares.by[v], bz = shares.bz[v];
-        Fx += d * bx;
-        Fy += d * by;
-        Fz += d * bz;
-        Tx += d * shares.tx[v];
-        Ty += d * shares.ty[v];
-        Tz += d * shares.tz[v];
-        const double d2 = d * d;
-        Gx += d2 * bx;
-        Gy += d2 * by;
-        Gz += d2 * bz;
-        Bx += bx;
-        By += by;
-        Bz += bz;
-        area += shares.area[v];
-        for (int k = 0; k < 9; ++k) M[k] += d * shares.m[k][v];
-    }
+    double sums[kShareSums] = {};
+    sumWetShares(shares, D, nv, sums);
+    double Fx = sums[kFx], Fy = sums[kFy], Fz = sums[kFz], Tx = sums[kTx], Ty = sums[kTy], Tz = sums[kTz];
+    double Gx = sums[kGx], Gy = sums[kGy], Gz = sums[kGz], Bx = sums[kBx], By = sums[kBy], Bz = sums[kBz];
+    double area = sums[kArea];
+    const double* M = sums + kM;
 
     // Pass 3: triangles. Entirely wet: the (Σ D)² part of ∫ D² n_y. Straddling: listed, then (pass 4) their wet
     // corners' shares are taken back and they are clipped (the exact wetted part goes into `clipped`, positions
@@ -167,31 +235,19 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
         const std::int32_t idx[3] = {i0, i1, i2};
         const Eigen::Vector3d A(ax[tr], ay[tr], az[tr]);
         const Eigen::Vector3d sum(qx[i0] + qx[i1] + qx[i2], qy[i0] + qy[i1] + qy[i2], qz[i0] + qz[i1] + qz[i2]);
-        const double Au = A.dot(u);
+        // The wet corners' shares (VertexShares.h), summed over the corners and taken back once per triangle.
+        double sd = 0, sd2 = 0, wet = 0;
+        Eigen::Vector3d sdw = Eigen::Vector3d::Zero();  // Σ D_i w_i
         BodyCorner in[3];
         for (int k = 0; k < 3; ++k) {
             const std::int32_t v = idx[k];
             const Eigen::Vector3d q(qx[v], qy[v], qz[v]);
             double d = D[v];
-            if (d <= 0) {  // a wet corner: take its shares back (VertexShares.h)
-                const Eigen::Vector3d w = (q + sum) / 12.0;
-                const Eigen::Vector3d wxA = w.cross(A);
-                Fx -= d * A.x() / 3.0;
-                Fy -= d * A.y() / 3.0;
-                Fz -= d * A.z() / 3.0;
-                Tx -= d * wxA.x();
-                Ty -= d * wxA.y();
-                Tz -= d * wxA.z();
-                cQx += d * w.x() * Au;
-                cQy += d * w.y() * Au;
-                cQz += d * w.z() * Au;
-                Gx -= d * d * A.x() / 3.0;
-                Gy -= d * d * A.y() / 3.0;
-                Gz -= d * d * A.z() / 3.0;
-                Bx -= A.x() / 3.0;
-                By -= A.y() / 3.0;
-                Bz -= A.z() / 3.0;
-                area -= shares.absArea[tr] / 3.0;
+            if (d <= 0) {
+                sd += d;
+                sd2 += d * d;
+                sdw += d * (q + sum);  // / 12 below
+                wet += 1;
             } else if (d == kNotComputed) {  // dry corner without its height: needed for the crossing point
                 const double x = r00 * q.x() + r01 * q.y() + r02 * q.z() + t.x();
                 const double z = r20 * q.x() + r21 * q.y() + r22 * q.z() + t.z();
@@ -202,6 +258,25 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
             in[k].s = q - qr;
             in[k].D = d;
         }
+        sdw /= 12.0;
+        const Eigen::Vector3d wxA = sdw.cross(A);
+        const double Au = A.dot(u);
+        Fx -= sd * A.x() / 3.0;
+        Fy -= sd * A.y() / 3.0;
+        Fz -= sd * A.z() / 3.0;
+        Tx -= wxA.x();
+        Ty -= wxA.y();
+        Tz -= wxA.z();
+        cQx += sdw.x() * Au;
+        cQy += sdw.y() * Au;
+        cQz += sdw.z() * Au;
+        Gx -= sd2 * A.x() / 3.0;
+        Gy -= sd2 * A.y() / 3.0;
+        Gz -= sd2 * A.z() / 3.0;
+        Bx -= wet * A.x() / 3.0;
+        By -= wet * A.y() / 3.0;
+        Bz -= wet * A.z() / 3.0;
+        area -= wet * shares.absArea[tr] / 3.0;
         addClippedBodyTriangle(in, u, clipped);
     }
 
