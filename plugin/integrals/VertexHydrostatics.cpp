@@ -15,8 +15,8 @@
 #include "integrals/BodyFrameSums.h"
 #include "integrals/Hydrostatics.h"
 #include "integrals/VertexShares.h"
+#include "integrals/VertexSharesKernel.h"
 #include "integrals/WaterPatch.h"
-#include "water/VectorMath.h"
 #include "water/btWaterSurface.h"
 
 #include <cmath>
@@ -24,14 +24,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-#define BB_VERTEX_X86 1
-#endif
-
-// The wide vector types' ABI note is reported at the end of the file: ignored for the whole file (every such function
-// is force-inlined into code built for its width).
-#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace buoyancy {
 namespace {
@@ -47,80 +39,6 @@ struct VertexScratch {
 /// D of a vertex whose height was not interpolated (above every value the patch can take: dry), computed when a
 /// straddling triangle needs it for the crossing point.
 constexpr double kNotComputed = std::numeric_limits<double>::infinity();
-
-/// Layout of the pass-2 sums: Σ D B (force), Σ D T (torque about the origin), Σ D² B, Σ B, Σ a, Σ D M (row-major).
-enum ShareSum { kFx, kFy, kFz, kTx, kTy, kTz, kGx, kGy, kGz, kBx, kBy, kBz, kArea, kM, kShareSums = kM + 9 };
-
-using namespace vmath;
-namespace sse2 {
-using V = v2d;
-#include "integrals/VertexSharesKernel.inl"
-}  // namespace sse2
-#ifdef BB_VERTEX_X86
-#pragma GCC push_options
-#pragma GCC target("avx2")
-namespace avx2 {
-using V = v4d;
-#include "integrals/VertexSharesKernel.inl"
-}  // namespace avx2
-#pragma GCC pop_options
-#pragma GCC push_options
-#pragma GCC target("avx512f")
-namespace avx512 {
-using V = v8d;
-#include "integrals/VertexSharesKernel.inl"
-}  // namespace avx512
-#pragma GCC pop_options
-__attribute__((target("avx2"))) std::size_t sumWetSharesAvx2(const VertexShares& s, const double* D, std::size_t n,
-                                                            double* out) {
-    return avx2::sumWetShares(s, D, n, out);
-}
-__attribute__((target("avx512f"))) std::size_t sumWetSharesAvx512(const VertexShares& s, const double* D, std::size_t n,
-                                                                 double* out) {
-    return avx512::sumWetShares(s, D, n, out);
-}
-#endif
-
-/// Widest SIMD the CPU runs (8, 4 or 2 doubles), as for the Gerstner queries.
-int cpuLanes() {
-#ifdef BB_VERTEX_X86
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx512f")) return 8;
-    if (__builtin_cpu_supports("avx2")) return 4;
-#endif
-    return 2;
-}
-
-/// Pass 2 (see the file comment): the shares of every vertex with D ≤ 0, several vertices per instruction, the last
-/// ones one by one.
-void sumWetShares(const VertexShares& s, const double* D, std::size_t n, double* out) {
-    static const int lanes = cpuLanes();
-    std::size_t done = 0;
-#ifdef BB_VERTEX_X86
-    if (lanes == 8)
-        done = sumWetSharesAvx512(s, D, n, out);
-    else if (lanes == 4)
-        done = sumWetSharesAvx2(s, D, n, out);
-    else
-#endif
-        done = sse2::sumWetShares(s, D, n, out);
-    (void)lanes;
-    for (std::size_t v = done; v < n; ++v) {
-        const double d = D[v];
-        if (!(d <= 0)) continue;
-        const double b[3] = {s.bx[v], s.by[v], s.bz[v]};
-        for (int k = 0; k < 3; ++k) {
-            out[kFx + k] += d * b[k];
-            out[kGx + k] += d * d * b[k];
-            out[kBx + k] += b[k];
-        }
-        out[kTx] += d * s.tx[v];
-        out[kTy] += d * s.ty[v];
-        out[kTz] += d * s.tz[v];
-        out[kArea] += s.area[v];
-        for (int k = 0; k < 9; ++k) out[kM + k] += d * s.m[k][v];
-    }
-}
 
 }  // namespace
 
@@ -196,7 +114,7 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
 
     // Pass 2: the shares of the vertices under water (D ≤ 0), body frame, moments about the body origin.
     double sums[kShareSums] = {};
-    sumWetShares(shares, D, nv, sums);
+    sumWetShares(shares, D, nv, sums);  // VertexSharesKernel.h
     double Fx = sums[kFx], Fy = sums[kFy], Fz = sums[kFz], Tx = sums[kTx], Ty = sums[kTy], Tz = sums[kTz];
     double Gx = sums[kGx], Gy = sums[kGy], Gz = sums[kGz], Bx = sums[kBx], By = sums[kBy], Bz = sums[kBz];
     double area = sums[kArea];
