@@ -7,6 +7,7 @@
 #include "integrals/SampleFormulas.h"
 
 #include <catch2/catch.hpp>
+#include <cfenv>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -14,6 +15,16 @@
 using namespace buoyancy;
 
 namespace {
+
+/// True when the invalid-operation exception traps (the CI's FPE run, tests/test_main.cpp): comparing a NaN then
+/// raises SIGFPE in the code under test and in the reference alike, so the NaN cases are left out there.
+bool invalidTrapped() {
+#if defined(__GLIBC__)
+    return (fegetexcept() & FE_INVALID) != 0;
+#else
+    return false;
+#endif
+}
 
 /// Structure-of-arrays storage behind a DragClusterBatch.
 struct Clusters {
@@ -91,7 +102,7 @@ Clusters randomClusters(std::mt19937& rng, std::size_t n) {
             case 1: c.half[i] = 0; break;                                          // no vertical extent
             case 3: c.ax[i] = c.ay[i] = c.az[i] = 0; break;                        // zero area vector
             case 5: c.cxx[i] = c.cxy[i] = c.cxz[i] = c.cyy[i] = c.cyz[i] = c.czz[i] = 0; break;  // no spread
-            case 7: c.h[i] = std::nan(""); break;                                  // NaN water: dry
+            case 7: c.h[i] = invalidTrapped() ? c.y[i] - 1.0 : std::nan(""); break;   // NaN water: dry
             case 9: c.h[i] = c.y[i] - c.half[i] - 0.1; break;                       // dry
             default: break;
         }
