@@ -19,9 +19,12 @@ bash scripts/install-deps.sh --bench || echo "warning: could not install the plo
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j"${JOBS:-2}" --target buoyancy
 mkdir -p "$out"
+# The commit before machine.txt is rewritten (the redirection below truncates the tracked file first, which made
+# every run report "with local changes").
+commit="$(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet 2>/dev/null || echo ' (with local changes)')"
 {
   echo "date: $(date -u +%Y-%m-%dT%H:%MZ)"
-  echo "commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet 2>/dev/null || echo ' (with local changes)')"
+  echo "commit: $commit"
   echo "cpu: $(lscpu | sed -n 's/^Model name: *//p' | head -1)"
   echo "cores: $(nproc)"
   echo "load average before the run: $(cut -d' ' -f1-3 /proc/loadavg)"
