@@ -72,19 +72,10 @@ __attribute__((target("avx512f"))) std::size_t runAvx512(const DragClusterBatch&
 }
 #endif
 
-int detectLanes() {
-#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx512f")) return 8;
-    if (__builtin_cpu_supports("avx2")) return 4;
-#endif
-    return 2;
-}
-
 }  // namespace
 
 int dragKernelLanes() {
-    static const int lanes = detectLanes();
+    static const int lanes = cpuLanes();
     return lanes;
 }
 

@@ -51,16 +51,6 @@ __attribute__((target("avx512f"))) std::size_t sumWetSharesAvx512(const VertexSh
 }
 #endif
 
-/// Widest SIMD the CPU runs (8, 4 or 2 doubles), as for the Gerstner queries.
-int cpuLanes() {
-#ifdef BB_VERTEX_X86
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx512f")) return 8;
-    if (__builtin_cpu_supports("avx2")) return 4;
-#endif
-    return 2;
-}
-
 }  // namespace
 
 int vertexKernelLanes() {

@@ -38,6 +38,17 @@ typedef double v2d __attribute__((vector_size(16)));  ///< 2 doubles (SSE2)
 typedef double v4d __attribute__((vector_size(32)));  ///< 4 doubles (AVX2)
 typedef double v8d __attribute__((vector_size(64)));  ///< 8 doubles (AVX-512)
 
+/// Widest SIMD this CPU runs, in doubles: 8 (AVX-512F), 4 (AVX2) or 2 (SSE2; every x86-64, and the only width
+/// elsewhere). The batch kernels (Gerstner queries, drag, the per-vertex shares) dispatch on it at run time.
+inline int cpuLanes() {
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f")) return 8;
+    if (__builtin_cpu_supports("avx2")) return 4;
+#endif
+    return 2;
+}
+
 /// Lane count and mask type (64-bit unsigned lanes, all ones where true) of a vector type.
 template <class V>
 struct Traits;

@@ -36,16 +36,6 @@ constexpr int kFastIterations = 16;
 /// Waves whose per-call scratch lives on the stack (more: one heap buffer per call, never per point).
 constexpr std::size_t kStackWaves = 16;
 
-/// Widest SIMD the CPU runs: 8 (AVX-512F), 4 (AVX2) or 2 (SSE2; every x86-64, and the only width elsewhere).
-int cpuLanes() {
-#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx512f")) return 8;
-    if (__builtin_cpu_supports("avx2")) return 4;
-#endif
-    return 2;
-}
-
 [[noreturn]] void bad(std::size_t i, const char* field, const std::string& what) {
     throw std::invalid_argument("waves[" + std::to_string(i) + "]." + field + ": " + what);
 }
@@ -120,11 +110,11 @@ btGerstnerWaterSurface::btGerstnerWaterSurface(const std::vector<btGerstnerWave>
         if (cheb > 0) m_tolFinish = std::min(m_tolFinish, std::cbrt(kRelativeAccuracy / (cheb * kMax)));
     }
     m_noise = kRoundingFloor / (1.0 - m_loop);
-    m_lanes = cpuLanes();
+    m_lanes = buoyancy::vmath::cpuLanes();
 }
 
 void btGerstnerWaterSurface::setSimdLanes(int lanes) {
-    const int cpu = cpuLanes();
+    const int cpu = buoyancy::vmath::cpuLanes();
     m_lanes = lanes >= 8 && cpu >= 8 ? 8 : (lanes >= 4 && cpu >= 4 ? 4 : 2);
 }
 

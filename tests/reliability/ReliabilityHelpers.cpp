@@ -1,24 +1,9 @@
 #include "reliability/ReliabilityHelpers.h"
 
-#include <cfenv>
 #include <fstream>
 #include <unistd.h>
 
 namespace reliability_test {
-
-ScopedFpTrapsOff::ScopedFpTrapsOff() {
-#if defined(__GLIBC__)
-    m_saved = fegetexcept();
-    fedisableexcept(FE_ALL_EXCEPT);
-#endif
-}
-
-ScopedFpTrapsOff::~ScopedFpTrapsOff() {
-#if defined(__GLIBC__)
-    std::feclearexcept(FE_ALL_EXCEPT);
-    feenableexcept(m_saved);
-#endif
-}
 
 std::size_t residentBytes() {
     std::ifstream in("/proc/self/statm");

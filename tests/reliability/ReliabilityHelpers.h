@@ -6,6 +6,7 @@
 
 #include "bullet/btBuoyancyInvariants.h"
 #include "oracles/BulletTestWorld.h"
+#include "oracles/FloatingPointTraps.h"
 
 #include <cstddef>
 
@@ -22,18 +23,8 @@ public:
     explicit CheckedWorld(const btWaterSurface* surface) : BulletTestWorld(surface) { checkInvariants(); }
 };
 
-/// Masks the floating-point traps of test_main.cpp (FPE build) for a test that feeds NaN or overflowing
-/// values on purpose: comparing a NaN raises FE_INVALID even where the code handles it. Restores on exit.
-class ScopedFpTrapsOff {
-public:
-    ScopedFpTrapsOff();
-    ~ScopedFpTrapsOff();
-    ScopedFpTrapsOff(const ScopedFpTrapsOff&) = delete;
-    ScopedFpTrapsOff& operator=(const ScopedFpTrapsOff&) = delete;
-
-private:
-    int m_saved = 0;
-};
+/// Floating-point traps masked on purpose (shared with the other tests: tests/oracles/FloatingPointTraps.h).
+using buoyancy_test::ScopedFpTrapsOff;
 
 /// Resident set size of this process, bytes (/proc/self/statm, field 2 × page size).
 std::size_t residentBytes();
