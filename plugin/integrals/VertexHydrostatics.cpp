@@ -5,7 +5,7 @@
 ///  1. each vertex: D_v = y_v − f(x_v, z_v) (body → world by the rows of R; on waves the height is interpolated from
 ///     the patch, and only for the vertices that can be under water: y_v ≤ the highest value the patch can take);
 ///  2. each vertex with D_v ≤ 0: the shares D_v B_v, D_v T_v, D_v M_v, D_v² B_v, B_v, a_v summed (several vertices
-///     per instruction: SSE2, AVX2 or AVX-512 chosen at run time, VertexSharesKernel.inl);
+///     per instruction: SSE2, AVX2 or AVX-512 chosen at run time, VertexSharesKernel.h);
 ///  3. each triangle: all corners under water → its ∫ D² n_y cross term (A_t (Σ D_i)²); corners on both sides →
 ///     listed;
 ///  4. the straddling triangles listed in pass 3: the shares their wet corners added are taken back and they are
