@@ -2,6 +2,7 @@
 // moments against the divergence theorem and the independent polyhedral oracle, the tree result in flat water
 // against the oracle and Archimedes, and on waves against clipping every triangle with exact wave queries.
 #include "ArchimedesErrors.h"
+#include "HydrostaticsTestCases.h"
 #include "integrals/Hydrostatics.h"
 #include "integrals/MeshMomentTree.h"
 #include "integrals/WaterPatch.h"
@@ -21,24 +22,11 @@ using namespace buoyancy_test;
 namespace {
 constexpr double kRho = 1000, kG = 9.81;
 
-struct NamedMesh {
-    const char* name;
-    OracleMesh mesh;
-};
-
 std::vector<NamedMesh> shapes() {
     return {{"box", oracleBox(1.0, 0.6, 0.8)},
             {"sphere", oracleSphere(0.5, 48, 24)},
             {"torus", oracleTorus(0.6, 0.2, 48, 24)},
             {"cylinder", oracleCylinder(0.3, 1.2, 40)}};
-}
-
-Eigen::Isometry3d randomPose(std::mt19937& rng, double spread) {
-    std::uniform_real_distribution<double> u(-1, 1);
-    Eigen::Vector3d axis(u(rng), u(rng), u(rng));
-    if (axis.norm() < 1e-3) axis = Eigen::Vector3d::UnitY();
-    return Eigen::Translation3d(spread * u(rng), 0.3 * u(rng), spread * u(rng)) *
-           Eigen::AngleAxisd(M_PI * u(rng), axis.normalized());
 }
 
 /// Visit every node, checking the structure; returns the number of leaves.
@@ -173,10 +161,7 @@ TEST_CASE("tree hydrostatics in flat water: the oracle and Archimedes to roundin
 TEST_CASE("tree hydrostatics on Gerstner waves: close to clipping every triangle with exact wave queries",
           "[integrals][tree]") {
     // The P3 sea of the benchmark (amplitudes 0.2–1 m, wavelengths 10–60 m) and a steeper short sea.
-    const std::vector<btGerstnerWave> p3 = {{1.0, 60.0, 1.0, 0.0, 0.5, 0.0},
-                                            {0.6, 35.0, 0.8, 0.6, 0.5, 1.3},
-                                            {0.35, 20.0, -0.3, 1.0, 0.5, 2.1},
-                                            {0.2, 10.0, 0.6, -0.8, 0.5, 0.4}};
+    const std::vector<btGerstnerWave> p3 = p3SeaWaves();
     const std::vector<btGerstnerWave> shortSea = {{0.25, 8.0, 1.0, 0.2, 0.7, 0.0}, {0.15, 5.0, 0.3, 1.0, 0.6, 1.0}};
     // The P3 sea's wavelengths at 0.3 of its amplitudes: low curvature, but the third-order part of the water over a
     // node does not shrink as fast (regression: a node-size rule on the curvature alone let nodes grow like
@@ -194,20 +179,13 @@ TEST_CASE("tree hydrostatics on Gerstner waves: close to clipping every triangle
             const TriangleMesh mesh = toTriangleMesh(s.mesh);
             const MeshMomentTree tree = buildMeshMomentTree(mesh);
             const double Vfull = oracleDryMoments(s.mesh.verts, s.mesh.tris).volume;
-            Eigen::Vector3d c = Eigen::Vector3d::Zero();
-            for (const auto& v : mesh.vertices) c += v;
-            c /= double(mesh.vertices.size());
-            double radius = 0;
-            for (const auto& v : mesh.vertices) radius = std::max(radius, (v - c).norm());
+            const MeshBall ball = meshBall(mesh);
+            const double radius = ball.radius;
             for (int p = 0; p < 16; ++p) {
-                Eigen::Isometry3d pose = randomPose(rng, 20.0);
                 const double t = 0.37 * p;
-                // Put the body's centre at the local water level ± a little, so it floats across the waterline.
-                const Eigen::Vector3d centre = pose * c;
-                double x = centre.x(), z = centre.z(), hc = 0;
-                sea.heights(&x, &z, 1, t, &hc);
-                pose.translation().y() += hc - centre.y() + radius * std::uniform_real_distribution<double>(-0.6, 0.6)(rng);
-                const Eigen::Vector3d bc = pose * c;
+                // The body's centre at the local water level ± a little, so it floats across the waterline.
+                const Eigen::Isometry3d pose = poseAcrossWaterline(rng, sea, t, ball, 20.0, 0.6);
+                const Eigen::Vector3d bc = pose * ball.centre;
                 WaterPatch patch;
                 btWaterQueryCache cache;
                 patch.build(sea, bc.x(), bc.z(), radius, t, 8, cache);

@@ -3,6 +3,7 @@
 // through vertices included: the corners with D = 0 exactly), and waves against clipping every triangle with the same
 // corner heights (the same water model, written independently in ClippedHydrostatics.cpp).
 #include "ArchimedesErrors.h"
+#include "HydrostaticsTestCases.h"
 #include "integrals/Hydrostatics.h"
 #include "integrals/VertexShares.h"
 #include "integrals/WaterPatch.h"
@@ -22,25 +23,12 @@ using namespace buoyancy_test;
 namespace {
 constexpr double kRho = 1000, kG = 9.81;
 
-struct NamedMesh {
-    const char* name;
-    OracleMesh mesh;
-};
-
 std::vector<NamedMesh> shapes() {
     return {{"box", oracleBox(1.0, 0.6, 0.8)},
             {"tetrahedron", oracleTetrahedron(0.9)},
             {"sphere", oracleSphere(0.5, 32, 16)},
             {"torus", oracleTorus(0.6, 0.2, 40, 20)},
             {"cylinder", oracleCylinder(0.3, 1.2, 24)}};
-}
-
-Eigen::Isometry3d randomPose(std::mt19937& rng, double spread) {
-    std::uniform_real_distribution<double> u(-1, 1);
-    Eigen::Vector3d axis(u(rng), u(rng), u(rng));
-    if (axis.norm() < 1e-3) axis = Eigen::Vector3d::UnitY();
-    return Eigen::Translation3d(spread * u(rng), 0.3 * u(rng), spread * u(rng)) *
-           Eigen::AngleAxisd(M_PI * u(rng), axis.normalized());
 }
 
 /// Wetted area below y = h of a posed mesh: each triangle clipped against the plane (written here, independent).
@@ -144,10 +132,7 @@ TEST_CASE("vertex hydrostatics in flat water: the oracle and Archimedes to round
 
 TEST_CASE("vertex hydrostatics on Gerstner waves: clipping every triangle with the same corner heights, to rounding",
           "[integrals][vertex]") {
-    const std::vector<btGerstnerWave> p3 = {{1.0, 60.0, 1.0, 0.0, 0.5, 0.0},
-                                            {0.6, 35.0, 0.8, 0.6, 0.5, 1.3},
-                                            {0.35, 20.0, -0.3, 1.0, 0.5, 2.1},
-                                            {0.2, 10.0, 0.6, -0.8, 0.5, 0.4}};
+    const std::vector<btGerstnerWave> p3 = p3SeaWaves();
     const std::vector<btGerstnerWave> shortSea = {{0.25, 3.0, 1.0, 0.2, 0.7, 0.0}, {0.15, 2.0, 0.3, 1.0, 0.6, 1.0}};
     std::mt19937 rng(29);
     double worst = 0;
@@ -158,20 +143,12 @@ TEST_CASE("vertex hydrostatics on Gerstner waves: clipping every triangle with t
             const TriangleMesh mesh = toTriangleMesh(s.mesh);
             const VertexShares sh = buildVertexShares(mesh);
             const double Vfull = oracleDryMoments(s.mesh.verts, s.mesh.tris).volume;
-            Eigen::Vector3d c = Eigen::Vector3d::Zero();
-            for (const auto& v : mesh.vertices) c += v;
-            c /= double(mesh.vertices.size());
-            double radius = 0;
-            for (const auto& v : mesh.vertices) radius = std::max(radius, (v - c).norm());
-            const double diag = 2 * radius;
+            const MeshBall ball = meshBall(mesh);
+            const double radius = ball.radius, diag = 2 * radius;
             for (int p = 0; p < 12; ++p) {
-                Eigen::Isometry3d pose = randomPose(rng, 20.0);
                 const double t = 0.41 * p;
-                const Eigen::Vector3d centre = pose * c;
-                double x = centre.x(), z = centre.z(), hc = 0;
-                sea.heights(&x, &z, 1, t, &hc);
-                pose.translation().y() += hc - centre.y() + radius * std::uniform_real_distribution<double>(-0.7, 0.7)(rng);
-                const Eigen::Vector3d bc = pose * c;
+                const Eigen::Isometry3d pose = poseAcrossWaterline(rng, sea, t, ball, 20.0, 0.7);
+                const Eigen::Vector3d bc = pose * ball.centre;
                 WaterPatch patch;
                 btWaterQueryCache cache;
                 patch.build(sea, bc.x(), bc.z(), radius, t, 8, cache);

@@ -1,0 +1,72 @@
+#pragma once
+/// @file HydrostaticsTestCases.h
+/// Cases shared by the exact-mesh oracle tests (the moment tree: TreeHydrostaticsTest.cpp; the per-vertex shares:
+/// VertexHydrostaticsTest.cpp): named oracle meshes, random poses, the benchmark's P3 sea, and a pose that puts a body
+/// across the local waterline of a wave field.
+
+#include "mesh/TriangleMesh.h"
+#include "oracles/OracleMeshes.h"
+#include "water/btGerstnerWaterSurface.h"
+#include "water/btWaterSurface.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace buoyancy_test {
+
+/// An oracle mesh and its name for the messages.
+struct NamedMesh {
+    const char* name;
+    OracleMesh mesh;
+};
+
+/// A random rigid pose: rotation by up to π about a random axis, translation up to ±spread in x and z and ±0.3 in y.
+inline Eigen::Isometry3d randomPose(std::mt19937& rng, double spread) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    Eigen::Vector3d axis(u(rng), u(rng), u(rng));
+    if (axis.norm() < 1e-3) axis = Eigen::Vector3d::UnitY();
+    return Eigen::Translation3d(spread * u(rng), 0.3 * u(rng), spread * u(rng)) *
+           Eigen::AngleAxisd(M_PI * u(rng), axis.normalized());
+}
+
+/// The sea of the benchmark's P3 (bullet_examples/benchmark/Scaling.h): amplitudes 1, 0.6, 0.35, 0.2 m, wavelengths
+/// 60, 35, 20, 10 m.
+inline std::vector<btGerstnerWave> p3SeaWaves() {
+    return {{1.0, 60.0, 1.0, 0.0, 0.5, 0.0},
+            {0.6, 35.0, 0.8, 0.6, 0.5, 1.3},
+            {0.35, 20.0, -0.3, 1.0, 0.5, 2.1},
+            {0.2, 10.0, 0.6, -0.8, 0.5, 0.4}};
+}
+
+/// The mean of a mesh's vertices and the largest distance from it to a vertex, m.
+struct MeshBall {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double radius = 0;
+};
+
+/// meshBall of `mesh` (at least one vertex).
+inline MeshBall meshBall(const buoyancy::TriangleMesh& mesh) {
+    MeshBall b;
+    for (const auto& v : mesh.vertices) b.centre += v;
+    b.centre /= double(mesh.vertices.size());
+    for (const auto& v : mesh.vertices) b.radius = std::max(b.radius, (v - b.centre).norm());
+    return b;
+}
+
+/// randomPose(rng, horizontal), then lifted so that the ball's centre is at the water height under it at time t, plus
+/// a uniform random offset within ±offset × radius (drawn after the pose, from the same generator).
+inline Eigen::Isometry3d poseAcrossWaterline(std::mt19937& rng, const btWaterSurface& water, double t,
+                                             const MeshBall& ball, double horizontal, double offset) {
+    Eigen::Isometry3d pose = randomPose(rng, horizontal);
+    const Eigen::Vector3d centre = pose * ball.centre;
+    double x = centre.x(), z = centre.z(), h = 0;
+    water.heights(&x, &z, 1, t, &h);
+    pose.translation().y() +=
+        h - centre.y() + ball.radius * std::uniform_real_distribution<double>(-offset, offset)(rng);
+    return pose;
+}
+
+}  // namespace buoyancy_test
