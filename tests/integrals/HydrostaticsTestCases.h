@@ -41,6 +41,28 @@ inline std::vector<btGerstnerWave> p3SeaWaves() {
             {0.2, 10.0, 0.6, -0.8, 0.5, 0.4}};
 }
 
+/// Vertical range and bounding-box diagonal of posed vertices, m.
+struct PosedBounds {
+    double lo = 0, hi = 0;  ///< lowest and highest y
+    double diag = 0;        ///< bounding-box diagonal
+};
+
+/// posedBounds of `posed` (at least one vertex).
+inline PosedBounds posedBounds(const std::vector<Eigen::Vector3d>& posed) {
+    PosedBounds b;
+    b.lo = 1e300;
+    b.hi = -1e300;
+    Eigen::Vector3d blo = posed[0], bhi = posed[0];
+    for (const auto& v : posed) {
+        b.lo = std::min(b.lo, v.y());
+        b.hi = std::max(b.hi, v.y());
+        blo = blo.cwiseMin(v);
+        bhi = bhi.cwiseMax(v);
+    }
+    b.diag = (bhi - blo).norm();
+    return b;
+}
+
 /// The mean of a mesh's vertices and the largest distance from it to a vertex, m.
 struct MeshBall {
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();

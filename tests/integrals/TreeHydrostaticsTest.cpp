@@ -126,15 +126,8 @@ TEST_CASE("tree hydrostatics in flat water: the oracle and Archimedes to roundin
         for (int p = 0; p < 12; ++p) {
             const Eigen::Isometry3d pose = randomPose(rng, 3.0);
             const auto posed = oraclePose(s.mesh.verts, pose);
-            double lo = 1e300, hi = -1e300;
-            Eigen::Vector3d blo = posed[0], bhi = posed[0];
-            for (const auto& v : posed) {
-                lo = std::min(lo, v.y());
-                hi = std::max(hi, v.y());
-                blo = blo.cwiseMin(v);
-                bhi = bhi.cwiseMax(v);
-            }
-            const double diag = (bhi - blo).norm();
+            const PosedBounds bounds = posedBounds(posed);
+            const double lo = bounds.lo, hi = bounds.hi, diag = bounds.diag;
             const Eigen::Vector3d ref = pose.translation() + Eigen::Vector3d(0.07, -0.03, 0.02);
             for (int k = 0; k < 15; ++k) {
                 const double h = lo - 0.05 * (hi - lo) + k * (1.1 * (hi - lo)) / 14.0;
