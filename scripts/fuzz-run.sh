@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Short (CI) or long libFuzzer run of every target in fuzz/ (issue 10).
 #   scripts/fuzz-run.sh [SECONDS_PER_TARGET]     default 45
+# Exit status: 0 nothing found, 1 a finding in our code (or the CLI broke its contract on an assimp input),
+# 3 the clang build failed.
 # Builds build-fuzz/ with clang (ASan + UBSan + libFuzzer). Each target starts from its seed corpus
 # fuzz/corpus/<name>/ (read-only) plus a working corpus in build-fuzz/corpus/<name>/ (grows across runs).
 # A crash, leak, timeout, out-of-memory or contract violation in our code fails the run; the input is left in
@@ -20,7 +22,11 @@ dir=${FUZZ_BUILD_DIR:-build-fuzz}
 CC=clang CXX=clang++ cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DBULLET_BUOYANCY_FUZZ=ON -DBULLET_BUOYANCY_SANITIZE=ON -DBULLET_BUOYANCY_BUILD_TESTS=OFF >/dev/null
 targets=(mesh_prepare atlas_bake scene_json water_graph_json permeability_image assimp_import)
-cmake --build "$dir" -j"${JOBS:-2}" --target "${targets[@]/#/fuzz_}"
+# A build that fails is not a fuzz finding (the library no longer compiles with clang): exit 3, which CI gates on.
+if ! cmake --build "$dir" -j"${JOBS:-2}" --target "${targets[@]/#/fuzz_}"; then
+  echo "fuzz-run: the clang build of the fuzz targets failed" >&2
+  exit 3
+fi
 # The CLI that checks assimp crash inputs: the normal build when present (scripts/test.sh made it).
 cli=${BUOYANCY_CLI:-build/bin/buoyancy}
 [ -x "$cli" ] || { cmake --build "$dir" -j"${JOBS:-2}" --target buoyancy; cli=$dir/bin/buoyancy; }

@@ -29,11 +29,20 @@ namespace {
 
 using namespace vmath;
 
+/// Lane-wise square root, one lane at a time: the widths whose instruction needs a target region this compiler cannot
+/// give (Clang: a target on these always-inline helpers would clash with the untargeted vmath helpers they call, as
+/// the Gerstner kernels' do not; the wide code is still generated where they are inlined, in runAvx2 / runAvx512).
+template <class V>
+BB_VM_INLINE V sqrtLanes(const V& x) {
+    V r = x;
+    for (int l = 0; l < Traits<V>::N; ++l) r[l] = std::sqrt(x[l]);
+    return r;
+}
+
 #ifdef BB_DRAG_X86
-#define BB_DRAG_SQRT(x) (v2d) _mm_sqrt_pd((__m128d)(x))
+#define BB_DRAG_SQRT(x) (v2d) _mm_sqrt_pd((__m128d)(x))  // SSE2: every x86-64
 #else
-BB_VM_INLINE v2d sqrtLanes(const v2d& x) { return v2d{std::sqrt(x[0]), std::sqrt(x[1])}; }
-#define BB_DRAG_SQRT(x) sqrtLanes(x)
+#define BB_DRAG_SQRT(x) sqrtLanes<v2d>(x)
 #endif
 namespace sse2 {
 using V = v2d;
@@ -41,24 +50,36 @@ using V = v2d;
 }  // namespace sse2
 #undef BB_DRAG_SQRT
 #ifdef BB_DRAG_X86
+#if defined(__clang__)
+#define BB_DRAG_SQRT(x) sqrtLanes<v4d>(x)
+#else  // GCC: the region gives every function below the target, so the intrinsic can be inlined into them
 #pragma GCC push_options
 #pragma GCC target("avx2")
 #define BB_DRAG_SQRT(x) (v4d) _mm256_sqrt_pd((__m256d)(x))
+#endif
 namespace avx2 {
 using V = v4d;
 #include "integrals/DragKernelBody.inl"
 }  // namespace avx2
 #undef BB_DRAG_SQRT
+#if !defined(__clang__)
 #pragma GCC pop_options
+#endif
+#if defined(__clang__)
+#define BB_DRAG_SQRT(x) sqrtLanes<v8d>(x)
+#else
 #pragma GCC push_options
 #pragma GCC target("avx512f")
 #define BB_DRAG_SQRT(x) (v8d) _mm512_maskz_sqrt_pd(__mmask8(0xff), (__m512d)(x))
+#endif
 namespace avx512 {
 using V = v8d;
 #include "integrals/DragKernelBody.inl"
 }  // namespace avx512
 #undef BB_DRAG_SQRT
+#if !defined(__clang__)
 #pragma GCC pop_options
+#endif
 #endif
 
 std::size_t runSse2(const DragClusterBatch& c, const DragMotion& m, double part[10]) { return sse2::run(c, m, part); }

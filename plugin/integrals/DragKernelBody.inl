@@ -1,6 +1,7 @@
 // DragKernelBody.inl: the vector drag sum of DragKernel.cpp for one width, included once per instruction set inside
-// its own namespace and `#pragma GCC target` region. Expects the vector type V and BB_DRAG_SQRT(x) (lane-wise square
-// root of a V) to be defined by the includer. Not a header of its own: no include guard, no public declarations.
+// its own namespace (with GCC, inside a `#pragma GCC target` region). Expects the vector type V and BB_DRAG_SQRT(x)
+// (lane-wise square root of a V) to be defined by the includer. Not a header of its own: no include guard, no public
+// declarations.
 
 /// Lane-wise square root.
 BB_VM_INLINE V vsqrt(const V& x) { return BB_DRAG_SQRT(x); }

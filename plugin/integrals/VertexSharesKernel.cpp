@@ -1,7 +1,8 @@
 /// @file VertexSharesKernel.cpp
 /// Pass 2 of the per-vertex exact-mesh hydrostatics, several vertices per instruction (VertexSharesKernel.h). Each
-/// width compiles VertexSharesKernel.inl in its own `#pragma GCC target` region; a lane whose D is not ≤ 0 is masked
-/// to exact zeros, the vertices after the last full vector are summed one by one.
+/// width compiles VertexSharesKernel.inl in its own namespace, force-inlined into a function built for its instruction
+/// set (as the Gerstner kernels); a lane whose D is not ≤ 0 is masked to exact zeros, the vertices after the last full
+/// vector are summed one by one.
 
 #include "integrals/VertexSharesKernel.h"
 
@@ -27,20 +28,14 @@ using V = v2d;
 #include "integrals/VertexSharesKernel.inl"
 }  // namespace sse2
 #ifdef BB_VERTEX_X86
-#pragma GCC push_options
-#pragma GCC target("avx2")
 namespace avx2 {
 using V = v4d;
 #include "integrals/VertexSharesKernel.inl"
 }  // namespace avx2
-#pragma GCC pop_options
-#pragma GCC push_options
-#pragma GCC target("avx512f")
 namespace avx512 {
 using V = v8d;
 #include "integrals/VertexSharesKernel.inl"
 }  // namespace avx512
-#pragma GCC pop_options
 __attribute__((target("avx2"))) std::size_t sumWetSharesAvx2(const VertexShares& s, const double* D, std::size_t n,
                                                             double* out) {
     return avx2::sumWetShares(s, D, n, out);

@@ -1,6 +1,7 @@
 // VertexSharesKernel.inl: pass 2 of VertexHydrostatics.cpp (the shares of the vertices under water) for one SIMD
-// width, included once per instruction set inside its own namespace and `#pragma GCC target` region. Expects the
-// vector type V to be defined by the includer. Not a header of its own: no include guard, no public declarations.
+// width, included once per instruction set inside its own namespace (force-inlined into a function built for it).
+// Expects the vector type V to be defined by the includer. Not a header of its own: no include guard, no public
+// declarations.
 
 /// Add the shares of the vertices [0, n − n mod N) with D ≤ 0 to out[kShareSums] (layout: see ShareSum); returns the
 /// first vertex not summed. A lane with D > 0 (or +∞, not computed) adds exact zeros.
