@@ -10,8 +10,24 @@
 #include "integrals/WetTriangleIntegrals.h"
 
 #include <Eigen/Geometry>
+#include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace buoyancy {
+
+/// The argument checks of the body-frame evaluations (treeHydrostatics, vertexHydrostatics): `who` names the function
+/// in the message.
+/// @throws std::invalid_argument for a negative or non-finite density, a non-finite gravity, pose or reference point
+inline void checkBodyFrameArguments(const char* who, double fluidDensity, double gravity, const Eigen::Isometry3d& pose,
+                                    const Eigen::Vector3d& torqueReference) {
+    if (!std::isfinite(fluidDensity) || fluidDensity < 0)
+        throw std::invalid_argument(std::string(who) + ": fluid density must be finite and ≥ 0, got " +
+                                    std::to_string(fluidDensity));
+    if (!std::isfinite(gravity)) throw std::invalid_argument(std::string(who) + ": gravity is not finite");
+    if (!pose.matrix().allFinite() || !torqueReference.allFinite())
+        throw std::invalid_argument(std::string(who) + ": the pose or the reference point is not finite");
+}
 
 /// Accumulators of the wetted integrals, body frame, positions relative to the reference point q_r (rotated once at
 /// the end: toWetIntegrals).

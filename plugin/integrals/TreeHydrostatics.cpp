@@ -109,12 +109,7 @@ inline void addWetNode(const MeshMomentNode& n, const Eigen::Vector3d& u, const 
 HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
                                     const btWaterSurface& water, double time, double fluidDensity, double gravity,
                                     const Eigen::Vector3d& torqueReference, const WaterPatch* patch) {
-    if (!std::isfinite(fluidDensity) || fluidDensity < 0)
-        throw std::invalid_argument("treeHydrostatics: fluid density must be finite and ≥ 0, got " +
-                                    std::to_string(fluidDensity));
-    if (!std::isfinite(gravity)) throw std::invalid_argument("treeHydrostatics: gravity is not finite");
-    if (!pose.matrix().allFinite() || !torqueReference.allFinite())
-        throw std::invalid_argument("treeHydrostatics: the pose or the reference point is not finite");
+    checkBodyFrameArguments("treeHydrostatics", fluidDensity, gravity, pose, torqueReference);
     double flatH = 0;
     const bool flat = water.isFlat(time, flatH);
     // Without a second-order water model over the nodes (a surface that is neither flat nor given by a patch): the

@@ -45,12 +45,7 @@ constexpr double kNotComputed = std::numeric_limits<double>::infinity();
 HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::Isometry3d& pose,
                                       const btWaterSurface& water, double time, double fluidDensity, double gravity,
                                       const Eigen::Vector3d& torqueReference, const WaterPatch* patch) {
-    if (!std::isfinite(fluidDensity) || fluidDensity < 0)
-        throw std::invalid_argument("vertexHydrostatics: fluid density must be finite and ≥ 0, got " +
-                                    std::to_string(fluidDensity));
-    if (!std::isfinite(gravity)) throw std::invalid_argument("vertexHydrostatics: gravity is not finite");
-    if (!pose.matrix().allFinite() || !torqueReference.allFinite())
-        throw std::invalid_argument("vertexHydrostatics: the pose or the reference point is not finite");
+    checkBodyFrameArguments("vertexHydrostatics", fluidDensity, gravity, pose, torqueReference);
     const std::size_t nv = shares.vertexCount(), nt = shares.triangleCount();
     if (nv == 0 || nt == 0) return HydrostaticsResult{};
     double flatH = 0;
