@@ -68,7 +68,8 @@ btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::strin
     r.requireObject(j, key);
     r.allowKeys(j, key, {"method", "texture", "drag_coefficient", "skin_friction", "linear_damping", "added_mass",
                          "added_mass_coefficient", "error_budget", "drag_clusters", "water_patch_nodes",
-                         "water_patch_nodes_per_wavelength"});
+                         "water_patch_nodes_per_wavelength", "hydrostatics_interval",
+                         "hydrostatics_reuse_tolerance"});
     btBuoyancySettings b;
     if (j.contains("method")) {
         const std::string m = r.string(j["method"], key + ".method");
@@ -90,6 +91,11 @@ btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::strin
     if (j.contains("water_patch_nodes_per_wavelength"))
         b.waterPatchNodesPerWavelength = r.number(j["water_patch_nodes_per_wavelength"],
                                                   key + ".water_patch_nodes_per_wavelength", 0, 1000);
+    if (j.contains("hydrostatics_interval"))
+        b.hydrostaticsInterval = r.integer(j["hydrostatics_interval"], key + ".hydrostatics_interval", 1, 16);
+    if (j.contains("hydrostatics_reuse_tolerance"))
+        b.hydrostaticsReuseTolerance =
+            r.number(j["hydrostatics_reuse_tolerance"], key + ".hydrostatics_reuse_tolerance", 0, 1, true);
     if (j.contains("drag_coefficient")) b.dragCoefficient = r.number(j["drag_coefficient"], key + ".drag_coefficient", 0, 100);
     if (j.contains("skin_friction")) b.skinFriction = r.number(j["skin_friction"], key + ".skin_friction", 0, 100);
     if (j.contains("linear_damping")) b.linearDamping = r.number(j["linear_damping"], key + ".linear_damping", 0, 100);

@@ -16,6 +16,7 @@
 #include <LinearMath/btIDebugDraw.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <mutex>
 #include <stdexcept>
@@ -61,6 +62,9 @@ btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBu
     m_settings.validate();
     m_ws.resize(m_shape->getSamples().size());
     selectDragClusters();
+    // Bodies take turns at their exact evaluations (hydrostaticsInterval > 1): staggered by creation order.
+    static std::atomic<std::uint64_t> created{0};
+    m_phase = created.fetch_add(1, std::memory_order_relaxed);
     m_baseLinearSleep = double(m_body->getLinearSleepingThreshold());
     m_baseAngularSleep = double(m_body->getAngularSleepingThreshold());
     m_world->registerAction(this);
@@ -78,6 +82,7 @@ void btBuoyancyAction::setSettings(const btBuoyancySettings& settings) {
     const bool recluster = settings.dragClusters != m_settings.dragClusters ||
                            settings.waterVelocityProbes != m_settings.waterVelocityProbes;
     m_settings = settings;
+    m_history.clear();  // the records may have been made with other drag or method settings
     if (recluster) selectDragClusters();
 }
 
@@ -112,7 +117,7 @@ btTransform btBuoyancyAction::getMeshInComFrame() const {
 void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy::WaterPatch* patch,
                                    const Eigen::Vector3d& com, const Eigen::Vector3d& v, const Eigen::Vector3d& w,
                                    double density, double time, Eigen::Vector3d& force, Eigen::Vector3d& torque,
-                                   Eigen::Vector3d& meanWaterVelocity) {
+                                   Eigen::Vector3d& meanWaterVelocity, bool reuseWater) {
     // DESIGN-NOTES 2.6 (paper eq. 12): per wetted sample, relative velocity v_i = v + ω × (p_i − c) − u(p_i);
     // pressure drag on front-facing samples F_i = −½ ρ C_d (A_i·v̂_i)|v_i|² v̂_i = −½ ρ C_d (A_i·v_i) v_i;
     // skin friction on the tangential part −½ ρ C_f |A_i| |v_t| v_t. The samples are the drag clusters
@@ -141,13 +146,17 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     }
     double flatH = 0;
     const bool flat = water.isFlat(time, flatH);
-    if (flat)
+    if (reuseWater) {
+        // Temporal level of detail: the clusters' water heights and velocities of the last exact evaluation
+        // (at most hydrostaticsInterval − 1 substeps old) are kept in m_dh and m_ux/m_uy/m_uz.
+    } else if (flat)
         std::fill(m_dh.begin(), m_dh.end(), flatH);
     else if (patch)
         patch->heights(m_dx.data(), m_dz.data(), n, m_dh.data());
     else
         water.heightsCached(m_dx.data(), m_dz.data(), n, time, m_dh.data(), m_dragCache);
-    if (flat || m_drag->probeX.size() >= n) {
+    if (reuseWater) {
+    } else if (flat || m_drag->probeX.size() >= n) {
         water.velocitiesCached(m_dx.data(), m_dy.data(), m_dz.data(), n, time, m_ux.data(), m_uy.data(), m_uz.data(),
                                m_dragCache);
     } else {
@@ -259,6 +268,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     const bool waves = water->isTimeVarying();
     if (!m_body->isActive() && !waves) {  // calm water: a sleeping body stays asleep
         m_needsPrime = true;
+        m_history.clear();
         return;
     }
 
@@ -271,6 +281,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     // throw through Bullet's stepSimulation (issue 10: clippedHydrostatics threw invalid_argument).
     if (!pose.matrix().allFinite() || !com.allFinite()) {
         ++m_rejected;
+        m_history.clear();
         return;
     }
 
@@ -282,6 +293,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
     if (bc.y() - br >= hi) {
         m_needsPrime = false;  // dry: the missed kick was zero
+        m_history.clear();
         m_hasLastCom = false;  // out of the water Bullet's own sleeping test is right again
         m_body->setSleepingThresholds(btScalar(m_baseLinearSleep), btScalar(m_baseAngularSleep));
         m_result = btBuoyancyResult();
@@ -289,6 +301,18 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
         return;
     }
     if (waves) m_body->activate();
+
+    // Temporal level of detail (settings.hydrostaticsInterval, btHydrostaticsHistory): exact at this body's
+    // evaluation substeps, predicted in between while the checks allow it.
+    const std::uint64_t substep = m_world->getSubstep();
+    const int interval = m_settings.hydrostaticsInterval;
+    const bool temporalLod =
+        interval > 1 && m_settings.buoyancyEnabled && !m_deformable && !m_world->getDeviceBackend();
+    const bool evaluationSubstep = temporalLod && (substep + m_phase) % std::uint64_t(interval) == 0;
+    btHydrostaticsSnapshot prediction;
+    const bool predicted =
+        temporalLod && !evaluationSubstep && !m_needsPrime && predictHydrostatics(substep, pose, com, prediction);
+    buoyancy::HydrostaticsResult h = predicted ? prediction.hydrostatics : buoyancy::HydrostaticsResult();
 
     // Fewer wave queries (DESIGN-NOTES 2.5): on a non-flat surface, one query per node of a small grid over
     // the body's footprint, interpolated at every vertex, sample and drag cluster.
@@ -302,7 +326,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     // Its spacing follows the shortest wave (btBuoyancyWaterPatchNodes); a patch with at least as many nodes as the
     // points it would stand for (vertices or samples, and drag clusters when drag is on) is not built: those are
     // queried exactly.
-    if (!flat && m_settings.waterPatchNodes > 0 && dynamic_cast<const btGerstnerWaterSurface*>(water)) {
+    if (!predicted && !flat && m_settings.waterPatchNodes > 0 && dynamic_cast<const btGerstnerWaterSurface*>(water)) {
         const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength()));
         const std::size_t points = (m_shape->getMethod() == btBuoyancyMethod::ExactMesh
                                         ? m_shape->getMesh().vertices.size()
@@ -319,9 +343,8 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     }
 
     const btBuoyancyMethod method = m_shape->getMethod();
-    buoyancy::HydrostaticsResult h;
     bool onDevice = false;  // [issue 7] h came from the world's device backend
-    if (m_settings.buoyancyEnabled) {
+    if (m_settings.buoyancyEnabled && !predicted) {
         try {  // never let an exception escape into Bullet's stepSimulation
             if (flat && bc.y() + br <= flatH && !m_deformable) {
                 h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (DESIGN-NOTES 2.5)
@@ -338,6 +361,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
             }
         } catch (const std::exception&) {
             ++m_rejected;
+            m_history.clear();
             return;
         }
     }
@@ -355,8 +379,28 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     Eigen::Vector3d v, w;
     dragEvaluationVelocity(h, dt, v, w);
     Eigen::Vector3d dragF = Eigen::Vector3d::Zero(), dragT = Eigen::Vector3d::Zero(), uMean = Eigen::Vector3d::Zero();
-    if (dragOn && !(onDevice && m_world->getDeviceBackend()->drag(*this, com, v, w, dragF, dragT, uMean)))  // [issue 7]
-        computeDrag(pose, patch, com, v, w, rho, time, dragF, dragT, uMean);
+    if (predicted && dragOn &&
+        btHydrostaticsHistory::velocityDeviation(v, w, prediction, m_shape->getBoundsRadius()) <=
+            allowedVelocityDeviation(h.waterline_area)) {
+        // Temporal level of detail: the extrapolated drag, while the motion follows the extrapolated one.
+        dragF = prediction.dragForce;
+        dragT = prediction.dragTorque;
+        uMean = m_lastMeanWaterVelocity;
+    } else if (dragOn && !(onDevice && m_world->getDeviceBackend()->drag(*this, com, v, w, dragF, dragT, uMean))) {  // [issue 7]
+        computeDrag(pose, patch, com, v, w, rho, time, dragF, dragT, uMean, predicted);
+    }
+    if (!predicted) m_lastMeanWaterVelocity = uMean;
+    if (evaluationSubstep) {
+        btHydrostaticsSnapshot exact;
+        exact.hydrostatics = h;
+        exact.com = com;
+        exact.rotation = pose.linear();
+        exact.dragForce = dragF;
+        exact.dragTorque = dragT;
+        exact.linearVelocity = v;
+        exact.angularVelocity = w;
+        recordHydrostatics(substep, exact, meff, dt);
+    }
 
     // Drag stability (DESIGN-NOTES 2.6): scale the drag impulse (J, L) by s so it can never add relative
     // kinetic energy nor reverse the relative motion. In the mass metric ⟨x,y⟩ = m_eff x_v·y_v + x_ω·I y_ω,
@@ -405,6 +449,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     m_result.waterlineArea = h.waterline_area;
     m_result.addedMass = ma;
     m_result.time = time;
+    m_result.predicted = predicted;
     // Never write NaN/Inf into a body (DESIGN-NOTES 3): checked after rounding to btScalar (a finite double
     // can overflow a float) and on the velocities the impulses would give.
     const btVector3 J = toBullet(linearImpulse), L = toBullet(angularImpulse);
@@ -413,6 +458,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     if (!linearImpulse.allFinite() || !angularImpulse.allFinite() || !toEigen(v1).allFinite() ||
         !toEigen(w1).allFinite()) {
         ++m_rejected;
+        m_history.clear();
         return;
     }
     // Sleeping (see m_baseLinearSleep): at rest when the COM really moved less than the body's threshold over
@@ -428,6 +474,69 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     m_result.applied = true;
     m_needsPrime = false;
     BT_BUOYANCY_CHECK_BODY(*m_body);
+}
+
+double btBuoyancyAction::allowedPoseDeviation(double waterlineArea) const {
+    // A drift δ changes the pressure force by about ρ g A_waterline δ, a fraction A_waterline δ / V of ρ g V:
+    // allow the tolerance's worth. V / A_waterline is the draft change that moves the force by ρ g V; a body
+    // under water (A_waterline = 0) is bounded by V^(1/3).
+    const double volume = m_shape->getUnitSolid().volume;
+    const double volume23 = std::cbrt(volume) * std::cbrt(volume);
+    return m_settings.hydrostaticsReuseTolerance * volume / std::max(waterlineArea, volume23);
+}
+
+double btBuoyancyAction::allowedVelocityDeviation(double waterlineArea) const {
+    // The velocity scale of the pose scale ℓ = V / A_waterline: sqrt(g ℓ) (the speed of a body falling through its
+    // draft); drag changes by a fraction of the tolerance when the velocity leaves the extrapolated one by that.
+    const double volume = m_shape->getUnitSolid().volume;
+    const double volume23 = std::cbrt(volume) * std::cbrt(volume);
+    const double length = volume / std::max(waterlineArea, volume23);
+    return m_settings.hydrostaticsReuseTolerance * std::sqrt(m_world->getGravity() * length);
+}
+
+bool btBuoyancyAction::predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose,
+                                           const Eigen::Vector3d& com, btHydrostaticsSnapshot& predicted) const {
+    const int interval = m_settings.hydrostaticsInterval;
+    if (m_reuseCooldown > 0 || !m_history.canPredict(substep, interval)) return false;
+    predicted = m_history.extrapolate(substep, interval);
+    // Pose check: a body moved by a contact, a teleport or an impulse leaves the extrapolated pose.
+    const double deviation =
+        btHydrostaticsHistory::poseDeviation(com, pose.linear(), predicted, m_shape->getBoundsRadius());
+    return deviation <= allowedPoseDeviation(predicted.hydrostatics.waterline_area) &&
+           predicted.hydrostatics.force.allFinite() && predicted.hydrostatics.torque.allFinite() &&
+           predicted.dragForce.allFinite() && predicted.dragTorque.allFinite();
+}
+
+void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrostaticsSnapshot& exact,
+                                          double effectiveMass, double dt) {
+    const int interval = m_settings.hydrostaticsInterval;
+    const buoyancy::HydrostaticsResult& h = exact.hydrostatics;
+    const double scale = m_world->getFluidDensity() * m_world->getGravity() * m_shape->getUnitSolid().volume;
+    const double diameter = 2.0 * m_shape->getBoundsRadius();
+    // Check the predictor against this exact evaluation (one interval past the newest record: further than any
+    // substep it predicted). A miss stops predictions for the next three intervals.
+    if (m_history.canCheck(substep, interval)) {
+        const btHydrostaticsSnapshot p = m_history.extrapolate(substep, interval);
+        const double error = std::max((p.hydrostatics.force - h.force).norm() / scale,
+                                      (p.hydrostatics.torque - h.torque).norm() / (scale * diameter));
+        if (!(error <= m_settings.hydrostaticsReuseTolerance))
+            m_reuseCooldown = 3;
+        else if (m_reuseCooldown > 0)
+            --m_reuseCooldown;
+    } else if (m_reuseCooldown > 0) {
+        --m_reuseCooldown;
+    }
+    // Stiffness check: extrapolating over an interval is only accurate while the heave is slow against it
+    // (ω K dt ≤ 0.3 with ω² = ρ g A_waterline / m_eff, DESIGN-NOTES 2.7); a light, stiff body evaluates exactly.
+    const double omega2 = m_world->getFluidDensity() * m_world->getGravity() * h.waterline_area / effectiveMass;
+    const double step = double(interval) * dt;
+    if (!(omega2 * step * step <= 0.09)) m_reuseCooldown = std::max(m_reuseCooldown, 1);
+    const bool finite = h.force.allFinite() && h.torque.allFinite() && std::isfinite(h.submerged_volume) &&
+                        exact.dragForce.allFinite() && exact.dragTorque.allFinite();
+    if (finite)
+        m_history.push(substep, exact);
+    else
+        m_history.clear();
 }
 
 void btBuoyancyAction::debugDraw(btIDebugDraw* debugDrawer) {

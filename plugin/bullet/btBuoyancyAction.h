@@ -12,6 +12,7 @@
 
 #include "bullet/btBuoyancySettings.h"
 #include "bullet/btBuoyancyShape.h"
+#include "bullet/btHydrostaticsHistory.h"
 #include "integrals/DragClusters.h"
 #include "integrals/Hydrostatics.h"
 #include "integrals/WaterPatch.h"
@@ -43,6 +44,9 @@ struct btBuoyancyResult {
     double addedMass = 0;                       ///< m_a applied this substep, kg
     double time = 0;                            ///< water time of the evaluation, s
     bool applied = false;                       ///< false when nothing was applied (dry, asleep, rejected)
+    /// The hydrostatic fields were predicted from earlier exact evaluations, not evaluated at this substep
+    /// (btBuoyancySettings::hydrostaticsInterval > 1; btHydrostaticsHistory).
+    bool predicted = false;
 };
 
 /// Buoyancy of one rigid body in the water of a btBuoyancyWorld.
@@ -109,7 +113,20 @@ public:
 private:
     void computeDrag(const Eigen::Isometry3d& pose, const buoyancy::WaterPatch* patch, const Eigen::Vector3d& com,
                      const Eigen::Vector3d& v, const Eigen::Vector3d& w, double density, double time,
-                     Eigen::Vector3d& force, Eigen::Vector3d& torque, Eigen::Vector3d& meanWaterVelocity);
+                     Eigen::Vector3d& force, Eigen::Vector3d& torque, Eigen::Vector3d& meanWaterVelocity,
+                     bool reuseWater = false);
+    /// Temporal level of detail: fill `predicted` with this substep's extrapolated evaluation and return true,
+    /// or return false when this substep must be evaluated exactly (btBuoyancySettings::hydrostaticsInterval).
+    bool predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose, const Eigen::Vector3d& com,
+                             btHydrostaticsSnapshot& predicted) const;
+    /// Temporal level of detail: after an exact evaluation at one of the body's evaluation substeps, check the
+    /// predictor against it, then record it.
+    void recordHydrostatics(std::uint64_t substep, const btHydrostaticsSnapshot& exact, double effectiveMass, double dt);
+    /// Temporal level of detail: the velocity deviation (btHydrostaticsHistory::velocityDeviation) up to which the
+    /// extrapolated drag is used, m/s.
+    double allowedVelocityDeviation(double waterlineArea) const;
+    /// Temporal level of detail: the pose deviation up to which the extrapolated hydrostatics are used, m.
+    double allowedPoseDeviation(double waterlineArea) const;
     /// (Re)select the shared drag clusters for the current settings and size the drag workspace.
     void selectDragClusters();
     /// Whole body below the lowest water point of flat water: the closed form from the dry mass properties.
@@ -129,6 +146,13 @@ private:
     /// True until the first hydrostatic kick after creation or sleep: Bullet has already applied gravity for
     /// a substep whose buoyancy kick (at the starting pose) was never given; see updateAction.
     bool m_needsPrime = true;
+    /// @name Temporal level of detail (settings.hydrostaticsInterval)
+    ///@{
+    btHydrostaticsHistory m_history;   ///< the last three exact evaluations at this body's evaluation substeps
+    int m_reuseCooldown = 0;           ///< evaluation substeps left before predicting again (a check failed)
+    std::uint64_t m_phase = 0;         ///< the body evaluates exactly when (substep + m_phase) % interval == 0
+    Eigen::Vector3d m_lastMeanWaterVelocity = Eigen::Vector3d::Zero(); ///< of the last computed drag, m/s
+    ///@}
     // Workspace sized once (no allocation per substep).
     buoyancy::SampleWorkspace m_ws;
     /// Warm-start memory of the water queries on m_ws's points (hydrostatic samples).

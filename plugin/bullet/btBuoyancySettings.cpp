@@ -58,6 +58,12 @@ void btBuoyancySettings::validate() const {
         throw std::invalid_argument("dragClusters: must be in 0..1000000 (got " + std::to_string(dragClusters) + ")");
     if (waterVelocityProbes < 0 || waterVelocityProbes > 1000000)
         throw std::invalid_argument("waterVelocityProbes: must be in 0..1000000 (got " + std::to_string(waterVelocityProbes) + ")");
+    if (hydrostaticsInterval < 1 || hydrostaticsInterval > 16)
+        throw std::invalid_argument("hydrostaticsInterval: must be in 1..16 (got " +
+                                    std::to_string(hydrostaticsInterval) + ")");
+    if (!(hydrostaticsReuseTolerance > 0 && hydrostaticsReuseTolerance <= 1))
+        throw std::invalid_argument("hydrostaticsReuseTolerance: must be a finite number in (0, 1] (got " +
+                                    std::to_string(hydrostaticsReuseTolerance) + ")");
     if (waterPatchNodes != 0 && (waterPatchNodes < 5 || waterPatchNodes > 64))
         throw std::invalid_argument("waterPatchNodes: must be 0 (exact queries) or in 5..64 (got " +
                                     std::to_string(waterPatchNodes) + ")");

@@ -1,0 +1,265 @@
+// Temporal level of detail (issue 9; btBuoyancySettings::hydrostaticsInterval, bullet/btHydrostaticsHistory):
+// the extrapolation is exact on quadratics, and in a simulation the predicted hydrostatics stay within the
+// tolerance of an exact evaluation at the same pose and time; contacts/teleports, stiff light bodies and bad
+// settings fall back to exact evaluation or a clear error.
+#include "oracles/BulletTestWorld.h"
+#include "bullet/btBulletConvert.h"
+#include "bullet/btHydrostaticsHistory.h"
+#include "mesh/PrimitiveMeshes.h"
+#include "water/btGerstnerWaterSurface.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+using namespace buoyancy_test;
+using buoyancy::toEigen;
+
+namespace {
+
+/// A snapshot whose every number is the quadratic q(t) = c0 + c1 t + c2 t², with coefficients varied per field.
+btHydrostaticsSnapshot quadraticSnapshot(double t) {
+    auto q = [t](double k) { return (1.0 + k) + (0.5 - 0.1 * k) * t + (0.02 * k - 0.3) * t * t; };
+    btHydrostaticsSnapshot s;
+    s.hydrostatics.force = Eigen::Vector3d(q(1), q(2), q(3));
+    s.hydrostatics.torque = Eigen::Vector3d(q(4), q(5), q(6));
+    s.hydrostatics.centre_of_buoyancy = Eigen::Vector3d(q(7), q(8), q(9));
+    s.hydrostatics.submerged_volume = 10 + q(10);
+    s.hydrostatics.waterline_area = 10 + q(11);
+    s.hydrostatics.wetted_area = 10 + q(12);
+    s.com = Eigen::Vector3d(q(13), q(14), q(15));
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) s.rotation(i, j) = q(16 + 3 * i + j);
+    s.dragForce = Eigen::Vector3d(q(25), q(26), q(27));
+    s.dragTorque = Eigen::Vector3d(q(28), q(29), q(30));
+    s.linearVelocity = Eigen::Vector3d(q(31), q(32), q(33));
+    s.angularVelocity = Eigen::Vector3d(q(34), q(35), q(36));
+    return s;
+}
+
+double largestDifference(const btHydrostaticsSnapshot& a, const btHydrostaticsSnapshot& b) {
+    double d = 0;
+    auto v = [&d](const Eigen::Vector3d& x, const Eigen::Vector3d& y) { d = std::max(d, (x - y).cwiseAbs().maxCoeff()); };
+    v(a.hydrostatics.force, b.hydrostatics.force);
+    v(a.hydrostatics.torque, b.hydrostatics.torque);
+    v(a.hydrostatics.centre_of_buoyancy, b.hydrostatics.centre_of_buoyancy);
+    d = std::max({d, std::abs(a.hydrostatics.submerged_volume - b.hydrostatics.submerged_volume),
+                  std::abs(a.hydrostatics.waterline_area - b.hydrostatics.waterline_area),
+                  std::abs(a.hydrostatics.wetted_area - b.hydrostatics.wetted_area),
+                  (a.rotation - b.rotation).cwiseAbs().maxCoeff()});
+    v(a.com, b.com);
+    v(a.dragForce, b.dragForce);
+    v(a.dragTorque, b.dragTorque);
+    v(a.linearVelocity, b.linearVelocity);
+    v(a.angularVelocity, b.angularVelocity);
+    return d;
+}
+
+/// Two Gerstner waves the 2 m box rides on (wavelengths 12 and 25 m, amplitudes 0.25 and 0.5 m).
+std::vector<btGerstnerWave> testSea() {
+    std::vector<btGerstnerWave> w(2);
+    w[0] = {0.5, 25.0, 1.0, 0.2, 0.5, 0.0};
+    w[1] = {0.25, 12.0, 0.3, 1.0, 0.5, 1.1};
+    return w;
+}
+
+/// Exact hydrostatics (every triangle, exact wave queries) of body i of `w` at its current pose and the water
+/// time of its last result.
+buoyancy::HydrostaticsResult exactNow(BulletTestWorld& w, std::size_t i, const btWaterSurface& water) {
+    const btBuoyancyAction& a = w.action(i);
+    const Eigen::Isometry3d pose = toEigen(w.rigid(i)->getWorldTransform() * a.getMeshInComFrame());
+    const Eigen::Vector3d com = toEigen(w.rigid(i)->getCenterOfMassPosition());
+    return buoyancy::clippedHydrostatics(a.getShape()->getMesh(), pose, water, a.getLastResult().time, 1000.0, 9.81,
+                                         com);
+}
+
+btBuoyancySettings intervalSettings(int k) {
+    btBuoyancySettings s;
+    s.method = btBuoyancyMethod::ExactMesh;
+    s.waterPatchNodes = 0;  // exact wave queries: the comparison below isolates the temporal error
+    s.hydrostaticsInterval = k;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("hydrostatics history: the extrapolation reproduces quadratics in time", "[bullet][temporal]") {
+    const int k = 4;
+    btHydrostaticsHistory history;
+    CHECK_FALSE(history.canPredict(13, k));
+    for (std::uint64_t n : {4u, 8u, 12u}) history.push(n, quadraticSnapshot(double(n) * 0.01));
+    REQUIRE(history.size() == 3);
+    for (std::uint64_t n = 13; n <= 16; ++n) {
+        CHECK(history.canPredict(n, k) == (n < 16));
+        CHECK(history.canCheck(n, k) == (n == 16));
+        const double d = largestDifference(history.extrapolate(n, k), quadraticSnapshot(double(n) * 0.01));
+        CHECK(d < 1e-12);
+    }
+    CHECK_FALSE(history.canPredict(12, k));  // at the newest record itself
+    CHECK_FALSE(history.canPredict(13, 3));  // records not 3 apart
+    // A missed evaluation (records 4, 8, 16) breaks the equal spacing: no prediction.
+    btHydrostaticsHistory gap;
+    for (std::uint64_t n : {4u, 8u, 16u}) gap.push(n, quadraticSnapshot(double(n)));
+    CHECK_FALSE(gap.canPredict(17, k));
+    CHECK_FALSE(gap.canCheck(20, k));
+    gap.clear();
+    CHECK(gap.size() == 0);
+}
+
+TEST_CASE("hydrostatics history: volumes and areas extrapolated below zero are clamped; deviations", "[bullet][temporal]") {
+    btHydrostaticsHistory history;
+    for (int n = 0; n < 3; ++n) {
+        btHydrostaticsSnapshot s;
+        s.hydrostatics.submerged_volume = 0.2 - 0.1 * n;  // 0.2, 0.1, 0.0 → −0.1 next
+        s.hydrostatics.waterline_area = 0.2 - 0.1 * n;
+        s.hydrostatics.wetted_area = 0.2 - 0.1 * n;
+        history.push(std::uint64_t(2 * n), s);
+    }
+    const btHydrostaticsSnapshot p = history.extrapolate(6, 2);
+    CHECK(p.hydrostatics.submerged_volume == 0.0);
+    CHECK(p.hydrostatics.waterline_area == 0.0);
+    CHECK(p.hydrostatics.wetted_area == 0.0);
+    // A rotation by a small angle θ about z, radius r: deviation ≈ r θ (|ΔR|_F = 2 sin(θ/2)·√2).
+    btHydrostaticsSnapshot still;
+    const double theta = 1e-3, r = 2.0;
+    const Eigen::Matrix3d rot = Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    CHECK(btHydrostaticsHistory::poseDeviation(Eigen::Vector3d(0, 0.01, 0), rot, still, r) ==
+          Approx(0.01 + r * 2 * std::sin(theta / 2)).epsilon(1e-9));
+    CHECK(btHydrostaticsHistory::velocityDeviation(Eigen::Vector3d(0.3, 0, 0.4), Eigen::Vector3d(0, 0.1, 0), still, r) ==
+          Approx(0.5 + r * 0.1));
+}
+
+TEST_CASE("interval 4 in waves: three substeps of four predicted, within the tolerance of exact", "[bullet][temporal]") {
+    const btGerstnerWaterSurface sea(testSea());
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(2.0, 0.6, 1.0), intervalSettings(4));
+    BulletTestWorld w(&sea);
+    btBuoyantBodySettings body;
+    body.density = 500;
+    for (int i = 0; i < 3; ++i)
+        w.add(shape, body, makePose(btVector3(btScalar(10 * i), 0, btScalar(3 * i))), intervalSettings(4));
+    w.run(1.0);  // settle into the waves
+    const double scale = 1000.0 * 9.81 * shape->getUnitSolid().volume;
+    const double tolerance = btBuoyancySettings().hydrostaticsReuseTolerance;
+    double sum = 0, worst = 0, worstExact = 0;
+    long count = 0, predicted = 0;
+    std::vector<double> errors;
+    for (int n = 0; n < 240 * 6; ++n) {
+        w.step(1, 1);
+        for (std::size_t i = 0; i < w.size(); ++i) {
+            const btBuoyancyResult& r = w.action(i).getLastResult();
+            REQUIRE(r.applied);
+            const double e = (toEigen(r.buoyancyForce) - exactNow(w, i, sea).force).norm() / scale;
+            ++count;
+            if (r.predicted) {
+                ++predicted;
+                sum += e;
+                errors.push_back(e);
+                worst = std::max(worst, e);
+            } else {
+                worstExact = std::max(worstExact, e);
+            }
+        }
+    }
+    const double fraction = double(predicted) / double(count);
+    REQUIRE(!errors.empty());
+    std::sort(errors.begin(), errors.end());
+    const double p99 = errors[errors.size() * 99 / 100];
+    std::printf("interval 4 in waves: %.1f %% of substeps predicted; force error of the predicted ones vs exact: mean "
+                "%.2e, 99th percentile %.2e, worst %.2e of rho g V; exact substeps %.1e\n",
+                100 * fraction, sum / double(predicted), p99, worst, worstExact);
+    CHECK(fraction > 0.70);
+    CHECK(fraction <= 0.75);
+    // The evaluation substeps are the exact method itself (the result is stored in btScalar).
+    CHECK(worstExact < (sizeof(btScalar) == 4 ? 1e-6 : 1e-9));
+    CHECK(sum / double(predicted) < 1e-4);  // on average ≥ 20× below the tolerance
+    CHECK(p99 < tolerance);
+    // Where a box corner crosses the waterline the force has a kink the quadratic cannot follow: single substeps
+    // reach about 1.5× the tolerance before the check at the next evaluation stops predictions.
+    CHECK(worst < 2 * tolerance);
+    CHECK(w.rejectedTotal() == 0);
+}
+
+TEST_CASE("interval 4: a teleported body is evaluated exactly at once", "[bullet][temporal]") {
+    const btGerstnerWaterSurface sea(testSea());
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(2.0, 0.6, 1.0), intervalSettings(4));
+    BulletTestWorld w(&sea);
+    btBuoyantBodySettings body;
+    body.density = 500;
+    w.add(shape, body, makePose(btVector3(0, 0, 0)), intervalSettings(4));
+    w.run(1.0);
+    // Step until the next substep would be predicted, then move the body 0.1 m down.
+    int guard = 0;
+    while (!w.action(0).getLastResult().predicted && ++guard < 8) w.step(1, 1);
+    REQUIRE(w.action(0).getLastResult().predicted);
+    btTransform t = w.rigid(0)->getWorldTransform();
+    t.setOrigin(t.getOrigin() - btVector3(0, btScalar(0.1), 0));
+    w.rigid(0)->setWorldTransform(t);
+    const double scale = 1000.0 * 9.81 * shape->getUnitSolid().volume;
+    w.step(1, 1);
+    CHECK_FALSE(w.action(0).getLastResult().predicted);
+    double worst = 0;
+    for (int n = 0; n < 40; ++n) {
+        const double e = (toEigen(w.action(0).getLastResult().buoyancyForce) - exactNow(w, 0, sea).force).norm() / scale;
+        worst = std::max(worst, e);
+        w.step(1, 1);
+    }
+    std::printf("after a 0.1 m teleport: worst force error over 40 substeps %.2e of rho g V\n", worst);
+    CHECK(worst < btBuoyancySettings().hydrostaticsReuseTolerance);
+}
+
+TEST_CASE("interval 4 in flat water: the same equilibrium draft as exact every substep", "[bullet][temporal]") {
+    // Oracle: a wall-sided box of density ratio s floats with draft s·c (Archimedes).
+    const double a = 2, c = 0.5, b = 1, s = 0.4;
+    double draft[2] = {0, 0};
+    for (int k : {1, 4}) {
+        auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(a, c, b), intervalSettings(k));
+        BulletTestWorld w;
+        btBuoyantBodySettings body;
+        body.density = 1000 * s;
+        w.add(shape, body, makePose(btVector3(0, btScalar(0.1), 0)), intervalSettings(k));
+        w.run(12.0);
+        draft[k == 4] = c / 2 - double(w.body(0).getMeshWorldTransform().getOrigin().y());
+        CHECK(w.rejectedTotal() == 0);
+    }
+    std::printf("flat-water draft: exact every substep %.6f m, interval 4 %.6f m, Archimedes %.6f m\n", draft[0],
+                draft[1], s * c);
+    CHECK(draft[1] == Approx(s * c).margin(2e-3));      // settled (the slow last 1 mm of a damped bobbing)
+    CHECK(draft[1] == Approx(draft[0]).margin(2e-5));   // and the prediction does not move it
+}
+
+TEST_CASE("interval 8: a light, stiff body is never predicted and stays bounded", "[bullet][temporal]") {
+    // A 7 cm cube at density ratio 0.05 heaves at ω = sqrt(ρ g A / m_eff) ≈ 40 rad/s: ω · 8 · dt ≈ 1.3 > 0.3.
+    const double side = 0.07;
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(side, side, side), intervalSettings(8));
+    BulletTestWorld w;
+    btBuoyantBodySettings body;
+    body.density = 50;
+    w.add(shape, body, makePose(btVector3(0, 0.05f, 0)), intervalSettings(8));
+    long predicted = 0;
+    for (int n = 0; n < 240 * 3; ++n) {
+        w.step(1, 1);
+        if (w.action(0).getLastResult().predicted) ++predicted;
+    }
+    const double y = double(w.body(0).getMeshWorldTransform().getOrigin().y());
+    std::printf("light cube, interval 8: %ld predicted substeps, centre at y = %.4f m\n", predicted, y);
+    CHECK(predicted == 0);
+    CHECK(std::abs(y - (side / 2 - 0.05 * side)) < 0.01);
+    CHECK(w.rejectedTotal() == 0);
+}
+
+TEST_CASE("hydrostaticsInterval and hydrostaticsReuseTolerance are validated", "[bullet][temporal]") {
+    btBuoyancySettings s;
+    s.hydrostaticsInterval = 0;
+    CHECK_THROWS_WITH(s.validate(), Catch::Contains("hydrostaticsInterval") && Catch::Contains("1..16"));
+    s.hydrostaticsInterval = 17;
+    CHECK_THROWS_WITH(s.validate(), Catch::Contains("hydrostaticsInterval"));
+    s.hydrostaticsInterval = 16;
+    CHECK_NOTHROW(s.validate());
+    for (double bad : {0.0, -1e-3, 1.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+        s.hydrostaticsReuseTolerance = bad;
+        CHECK_THROWS_WITH(s.validate(), Catch::Contains("hydrostaticsReuseTolerance"));
+    }
+}
