@@ -92,7 +92,7 @@ btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::strin
         b.waterPatchNodesPerWavelength = r.number(j["water_patch_nodes_per_wavelength"],
                                                   key + ".water_patch_nodes_per_wavelength", 0, 1000);
     if (j.contains("hydrostatics_interval"))
-        b.hydrostaticsInterval = r.integer(j["hydrostatics_interval"], key + ".hydrostatics_interval", 1, 16);
+        b.hydrostaticsInterval = r.integer(j["hydrostatics_interval"], key + ".hydrostatics_interval", 0, 16);
     if (j.contains("hydrostatics_reuse_tolerance"))
         b.hydrostaticsReuseTolerance =
             r.number(j["hydrostatics_reuse_tolerance"], key + ".hydrostatics_reuse_tolerance", 0, 1, true);

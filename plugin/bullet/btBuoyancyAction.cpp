@@ -16,7 +16,6 @@
 #include <LinearMath/btIDebugDraw.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <mutex>
 #include <stdexcept>
@@ -62,12 +61,10 @@ btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBu
     m_settings.validate();
     m_ws.resize(m_shape->getSamples().size());
     selectDragClusters();
-    // Bodies take turns at their exact evaluations (hydrostaticsInterval > 1): staggered by creation order.
-    static std::atomic<std::uint64_t> created{0};
-    m_phase = created.fetch_add(1, std::memory_order_relaxed);
     m_baseLinearSleep = double(m_body->getLinearSleepingThreshold());
     m_baseAngularSleep = double(m_body->getAngularSleepingThreshold());
-    m_world->registerAction(this);
+    // Bodies take turns at their exact evaluations (temporal level of detail): staggered by registration order.
+    m_phase = m_world->registerAction(this);
 }
 
 btBuoyancyAction::btBuoyancyAction(btBuoyantBody& body, btBuoyancyWorld* world, const btBuoyancySettings& settings)
@@ -305,7 +302,9 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     // Temporal level of detail (settings.hydrostaticsInterval, btHydrostaticsHistory): exact at this body's
     // evaluation substeps, predicted in between while the checks allow it.
     const std::uint64_t substep = m_world->getSubstep();
-    const int interval = m_settings.hydrostaticsInterval;
+    const int interval =
+        m_settings.hydrostaticsInterval > 0 ? m_settings.hydrostaticsInterval : btBuoyancyAutomaticInterval(dt);
+    m_interval = interval;
     const bool temporalLod =
         interval > 1 && m_settings.buoyancyEnabled && !m_deformable && !m_world->getDeviceBackend();
     const bool evaluationSubstep = temporalLod && (substep + m_phase) % std::uint64_t(interval) == 0;
@@ -496,8 +495,8 @@ double btBuoyancyAction::allowedVelocityDeviation(double waterlineArea) const {
 
 bool btBuoyancyAction::predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose,
                                            const Eigen::Vector3d& com, btHydrostaticsSnapshot& predicted) const {
-    const int interval = m_settings.hydrostaticsInterval;
-    if (m_reuseCooldown > 0 || !m_history.canPredict(substep, interval)) return false;
+    const int interval = m_interval;
+    if (m_reuseCooldown > 0 || !m_history.canPredict(substep, m_world->getTime(), interval)) return false;
     predicted = m_history.extrapolate(substep, interval);
     // Pose check: a body moved by a contact, a teleport or an impulse leaves the extrapolated pose.
     const double deviation =
@@ -509,13 +508,14 @@ bool btBuoyancyAction::predictHydrostatics(std::uint64_t substep, const Eigen::I
 
 void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrostaticsSnapshot& exact,
                                           double effectiveMass, double dt) {
-    const int interval = m_settings.hydrostaticsInterval;
+    const int interval = m_interval;
     const buoyancy::HydrostaticsResult& h = exact.hydrostatics;
     const double scale = m_world->getFluidDensity() * m_world->getGravity() * m_shape->getUnitSolid().volume;
     const double diameter = 2.0 * m_shape->getBoundsRadius();
     // Check the predictor against this exact evaluation (one interval past the newest record: further than any
     // substep it predicted). A miss stops predictions for the next three intervals.
-    if (m_history.canCheck(substep, interval)) {
+    const double time = m_world->getTime();
+    if (m_history.canCheck(substep, time, interval)) {
         const btHydrostaticsSnapshot p = m_history.extrapolate(substep, interval);
         const double error = std::max((p.hydrostatics.force - h.force).norm() / scale,
                                       (p.hydrostatics.torque - h.torque).norm() / (scale * diameter));
@@ -534,7 +534,7 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
     const bool finite = h.force.allFinite() && h.torque.allFinite() && std::isfinite(h.submerged_volume) &&
                         exact.dragForce.allFinite() && exact.dragTorque.allFinite();
     if (finite)
-        m_history.push(substep, exact);
+        m_history.push(substep, time, exact);
     else
         m_history.clear();
 }

@@ -151,6 +151,7 @@ private:
     btHydrostaticsHistory m_history;   ///< the last three exact evaluations at this body's evaluation substeps
     int m_reuseCooldown = 0;           ///< evaluation substeps left before predicting again (a check failed)
     std::uint64_t m_phase = 0;         ///< the body evaluates exactly when (substep + m_phase) % interval == 0
+    int m_interval = 1;                ///< this substep's interval (settings.hydrostaticsInterval resolved)
     Eigen::Vector3d m_lastMeanWaterVelocity = Eigen::Vector3d::Zero(); ///< of the last computed drag, m/s
     ///@}
     // Workspace sized once (no allocation per substep).

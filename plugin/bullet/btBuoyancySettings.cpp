@@ -58,8 +58,8 @@ void btBuoyancySettings::validate() const {
         throw std::invalid_argument("dragClusters: must be in 0..1000000 (got " + std::to_string(dragClusters) + ")");
     if (waterVelocityProbes < 0 || waterVelocityProbes > 1000000)
         throw std::invalid_argument("waterVelocityProbes: must be in 0..1000000 (got " + std::to_string(waterVelocityProbes) + ")");
-    if (hydrostaticsInterval < 1 || hydrostaticsInterval > 16)
-        throw std::invalid_argument("hydrostaticsInterval: must be in 1..16 (got " +
+    if (hydrostaticsInterval < 0 || hydrostaticsInterval > 16)
+        throw std::invalid_argument("hydrostaticsInterval: must be 0 (automatic) or in 1..16 (got " +
                                     std::to_string(hydrostaticsInterval) + ")");
     if (!(hydrostaticsReuseTolerance > 0 && hydrostaticsReuseTolerance <= 1))
         throw std::invalid_argument("hydrostaticsReuseTolerance: must be a finite number in (0, 1] (got " +
@@ -135,4 +135,10 @@ int btBuoyancyWaterPatchNodes(const btBuoyancySettings& settings, double footpri
         if (cells + 4.0 > double(nodes)) nodes = cells + 4.0 >= 64.0 ? 64 : int(cells) + 4;
     }
     return std::min(nodes, 64);
+}
+
+int btBuoyancyAutomaticInterval(double dt) {
+    if (!(dt > 0) || !std::isfinite(dt)) return 1;
+    const double ratio = (1.0 / 120.0) / dt;
+    return int(std::max(1.0, std::min(16.0, std::floor(ratio + 1e-6))));
 }

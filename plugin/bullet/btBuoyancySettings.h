@@ -80,19 +80,21 @@ struct btBuoyancySettings {
     /// A patch with at least as many nodes as the points it would stand for (the mesh's vertices or the samples, plus
     /// the drag clusters) is not built: those points are then queried exactly (cheaper, and exact).
     double waterPatchNodesPerWavelength = 16.0;
-    /// Temporal level of detail (issue 9; btHydrostaticsHistory): evaluate the hydrostatics exactly every
-    /// hydrostaticsInterval-th substep and predict them in between by extrapolating the last three exact
-    /// evaluations quadratically in time (drag is still computed every substep, for the body's current pose and
-    /// velocity, against the water heights and velocities of the last exact evaluation). 1 (default) = exact
-    /// every substep. 2–8 for large fleets: measured on the benchmark's 3,400-triangle boat in its 4-wave sea
-    /// at 240 substeps/s, the predicted pressure force is off by ≈ 0.001 % (K = 4) of ρ g V on average
-    /// (docs/benchmarks: temporal_lod.csv). A body predicts only while its pose stays within
-    /// hydrostaticsReuseTolerance of the pose extrapolated the same way (a contact or a teleport makes it evaluate
-    /// exactly), while its heave is slow against the interval (ω K dt ≤ 0.3, ω² = ρ g A_waterline / m), and while
-    /// the last check of the predictor against an exact evaluation passed. Bodies of one world take turns
-    /// (staggered by creation order), so the cost per substep stays even. Ignored (exact every substep) for
-    /// deformable bodies and on a device backend. 1..16.
-    int hydrostaticsInterval = 1;
+    /// Temporal level of detail (issue 9; btHydrostaticsHistory): evaluate the hydrostatics and drag exactly
+    /// every K-th substep and predict them in between by extrapolating the last three exact evaluations
+    /// quadratically in time. A body predicts only while its pose and velocity stay within
+    /// hydrostaticsReuseTolerance of the ones extrapolated the same way (a contact or a teleport makes it
+    /// evaluate exactly), while its heave is slow against the interval (ω K dt ≤ 0.3, ω² = ρ g A_waterline /
+    /// m_eff), and while the last check of the predictor against an exact evaluation passed. Bodies of one world
+    /// take turns (staggered by registration order), so the cost per substep stays even; results are
+    /// deterministic. getLastResult().predicted says which substeps were predicted. Ignored (exact every
+    /// substep) for deformable bodies and on a device backend.
+    /// 0 (default) = automatic: an exact evaluation at least every 1/120 s (btBuoyancyAutomaticInterval: every
+    /// substep up to 120 substeps/s, every 2nd at 240/s, every 4th at 480/s). 1 = exact every substep. 2..16:
+    /// that K. Measured on the benchmark's 3,400-triangle boat in its 4-wave sea at 240 substeps/s against exact
+    /// wave queries (docs/benchmarks/temporal_lod.csv): K = 2 leaves the force error where K = 1 has it (the wave
+    /// patch's), K = 4 adds ≈ 0.0001 % of ρ g V on average and reaches 0.06 % at worst, K = 6 0.2 % at worst.
+    int hydrostaticsInterval = 0;
     /// Largest prediction error accepted by hydrostaticsInterval's checks, as a fraction of the body's full
     /// buoyancy ρ g V (force) and of ρ g V × its bounding diameter (torque); the pose check allows a drift of this
     /// fraction × V / A_waterline (the draft change that would change the force by this fraction). A failed check
@@ -111,6 +113,10 @@ struct btBuoyancySettings {
     /// Check every field. @throws std::invalid_argument whose message names the field and the value
     void validate() const;
 };
+
+/// The interval hydrostaticsInterval = 0 stands for at a substep of dt seconds: the largest K ≤ 16 with
+/// K·dt ≤ 1/120 s (at least 1).
+int btBuoyancyAutomaticInterval(double dt);
 
 /// The concrete method Auto stands for, given the mesh's triangle count (delegates to
 /// buoyancy::resolveMethod, the one place that decides the library default); others are returned unchanged.

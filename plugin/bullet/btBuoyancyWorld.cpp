@@ -41,7 +41,10 @@ void btBuoyancyWorld::setDeviceBackend(std::unique_ptr<btBuoyancyDeviceBackend> 
     m_device = std::move(backend);
 }
 
-void btBuoyancyWorld::registerAction(btBuoyancyAction* action) { m_actions.push_back(action); }
+std::uint64_t btBuoyancyWorld::registerAction(btBuoyancyAction* action) {
+    m_actions.push_back(action);
+    return m_registrations++;
+}
 
 void btBuoyancyWorld::unregisterAction(btBuoyancyAction* action) {
     m_actions.erase(std::remove(m_actions.begin(), m_actions.end(), action), m_actions.end());

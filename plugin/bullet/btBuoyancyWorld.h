@@ -79,8 +79,9 @@ public:
     btBuoyancyDeviceBackend* getDeviceBackend() const { return m_device.get(); }
     ///@}
 
-    /// Internal: actions register and unregister themselves.
-    void registerAction(btBuoyancyAction* action);
+    /// Internal: actions register and unregister themselves. Returns how many actions registered before this one
+    /// (its turn among the bodies for the temporal level of detail; deterministic for a given scene).
+    std::uint64_t registerAction(btBuoyancyAction* action);
     void unregisterAction(btBuoyancyAction* action);
 
 private:
@@ -90,5 +91,6 @@ private:
     double m_time = 0;
     std::uint64_t m_substep = 0;
     std::vector<btBuoyancyAction*> m_actions;
+    std::uint64_t m_registrations = 0;  ///< actions registered so far (never decreases)
     std::unique_ptr<btBuoyancyDeviceBackend> m_device;  ///< issue 7: batching backend, nullptr = CPU
 };

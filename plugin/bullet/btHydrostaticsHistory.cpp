@@ -51,28 +51,36 @@ btHydrostaticsSnapshot btHydrostaticsHistory::unpack(const std::array<double, kV
     return s;
 }
 
-void btHydrostaticsHistory::push(std::uint64_t substep, const btHydrostaticsSnapshot& snapshot) {
+void btHydrostaticsHistory::push(std::uint64_t substep, double time, const btHydrostaticsSnapshot& snapshot) {
     m_records[2] = m_records[1];
     m_records[1] = m_records[0];
     m_records[0].substep = substep;
+    m_records[0].time = time;
     m_records[0].x = pack(snapshot);
     if (m_count < 3) ++m_count;
 }
 
-bool btHydrostaticsHistory::canPredict(std::uint64_t substep, int interval) const {
+bool btHydrostaticsHistory::spaced(std::uint64_t substep, double time, int interval, std::uint64_t maxAhead) const {
     if (m_count < 3 || interval < 2) return false;
     const std::uint64_t k = std::uint64_t(interval);
     const Record &r0 = m_records[0], &r1 = m_records[1], &r2 = m_records[2];
-    return r0.substep - r1.substep == k && r1.substep - r2.substep == k && substep > r0.substep &&
-           substep - r0.substep < k;
+    if (r0.substep - r1.substep != k || r1.substep - r2.substep != k || substep <= r0.substep ||
+        substep - r0.substep > maxAhead)
+        return false;
+    // Equal substep lengths: the records equally spaced in time, and `time` where that spacing puts it.
+    const double span = r0.time - r1.time;
+    const double slack = 1e-6 * std::abs(span);
+    const double expected = r0.time + span * double(substep - r0.substep) / double(k);
+    return span > 0 && std::abs((r1.time - r2.time) - span) <= slack && std::abs(time - expected) <= slack;
 }
 
-bool btHydrostaticsHistory::canCheck(std::uint64_t substep, int interval) const {
-    if (m_count < 3 || interval < 2) return false;
-    const std::uint64_t k = std::uint64_t(interval);
-    const Record &r0 = m_records[0], &r1 = m_records[1], &r2 = m_records[2];
-    return r0.substep - r1.substep == k && r1.substep - r2.substep == k && substep > r0.substep &&
-           substep - r0.substep == k;
+bool btHydrostaticsHistory::canPredict(std::uint64_t substep, double time, int interval) const {
+    return interval >= 2 && spaced(substep, time, interval, std::uint64_t(interval) - 1);
+}
+
+bool btHydrostaticsHistory::canCheck(std::uint64_t substep, double time, int interval) const {
+    return interval >= 2 && spaced(substep, time, interval, std::uint64_t(interval)) &&
+           substep - m_records[0].substep == std::uint64_t(interval);
 }
 
 btHydrostaticsSnapshot btHydrostaticsHistory::extrapolate(std::uint64_t substep, int interval) const {

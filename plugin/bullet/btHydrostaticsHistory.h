@@ -40,16 +40,17 @@ public:
     /// Number of records held (0..3).
     int size() const { return m_count; }
 
-    /// Record an exact evaluation made at `substep` (the world's substep counter).
-    void push(std::uint64_t substep, const btHydrostaticsSnapshot& snapshot);
+    /// Record an exact evaluation made at `substep` (the world's substep counter) and water time `time` (s).
+    void push(std::uint64_t substep, double time, const btHydrostaticsSnapshot& snapshot);
 
-    /// True when three records `interval` substeps apart are held and `substep` lies strictly between the newest
-    /// and the next evaluation substep (1 ≤ substep − newest < interval).
-    bool canPredict(std::uint64_t substep, int interval) const;
+    /// True when three records `interval` substeps and equal times apart are held, `substep` lies strictly between
+    /// the newest and the next evaluation substep (1 ≤ substep − newest < interval) and `time` is where equal
+    /// substeps put it (a changed substep length makes the extrapolation meaningless).
+    bool canPredict(std::uint64_t substep, double time, int interval) const;
 
-    /// True when three records `interval` substeps apart are held and `substep` is the next evaluation substep
-    /// (substep − newest = interval): the exact evaluation there checks the predictor.
-    bool canCheck(std::uint64_t substep, int interval) const;
+    /// As canPredict, for the next evaluation substep itself (substep − newest = interval): the exact evaluation
+    /// there checks the predictor.
+    bool canCheck(std::uint64_t substep, double time, int interval) const;
 
     /// The records extrapolated to `substep` (call only when canPredict or canCheck).
     btHydrostaticsSnapshot extrapolate(std::uint64_t substep, int interval) const;
@@ -65,9 +66,12 @@ public:
 
 private:
     static constexpr int kValues = 36;  ///< numbers per record (see pack)
-    /// One exact evaluation: the world substep and the snapshot's numbers.
+    /// Records equally spaced, `substep` at most `interval` past the newest, `time` consistent with both.
+    bool spaced(std::uint64_t substep, double time, int interval, std::uint64_t maxAhead) const;
+    /// One exact evaluation: the world substep, its water time (s) and the snapshot's numbers.
     struct Record {
         std::uint64_t substep = 0;
+        double time = 0;
         std::array<double, kValues> x{};
     };
     static std::array<double, kValues> pack(const btHydrostaticsSnapshot& s);

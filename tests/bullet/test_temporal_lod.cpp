@@ -89,22 +89,30 @@ btBuoyancySettings intervalSettings(int k) {
 TEST_CASE("hydrostatics history: the extrapolation reproduces quadratics in time", "[bullet][temporal]") {
     const int k = 4;
     btHydrostaticsHistory history;
-    CHECK_FALSE(history.canPredict(13, k));
-    for (std::uint64_t n : {4u, 8u, 12u}) history.push(n, quadraticSnapshot(double(n) * 0.01));
+    const double dt = 0.01;  // substep, s
+    CHECK_FALSE(history.canPredict(13, 13 * dt, k));
+    for (std::uint64_t n : {4u, 8u, 12u}) history.push(n, double(n) * dt, quadraticSnapshot(double(n) * dt));
     REQUIRE(history.size() == 3);
     for (std::uint64_t n = 13; n <= 16; ++n) {
-        CHECK(history.canPredict(n, k) == (n < 16));
-        CHECK(history.canCheck(n, k) == (n == 16));
-        const double d = largestDifference(history.extrapolate(n, k), quadraticSnapshot(double(n) * 0.01));
+        CHECK(history.canPredict(n, double(n) * dt, k) == (n < 16));
+        CHECK(history.canCheck(n, double(n) * dt, k) == (n == 16));
+        const double d = largestDifference(history.extrapolate(n, k), quadraticSnapshot(double(n) * dt));
         CHECK(d < 1e-12);
     }
-    CHECK_FALSE(history.canPredict(12, k));  // at the newest record itself
-    CHECK_FALSE(history.canPredict(13, 3));  // records not 3 apart
+    CHECK_FALSE(history.canPredict(12, 12 * dt, k));   // at the newest record itself
+    CHECK_FALSE(history.canPredict(13, 13 * dt, 3));   // records not 3 apart
+    CHECK_FALSE(history.canPredict(13, 12.5 * dt, k)); // the substep length changed since the records
     // A missed evaluation (records 4, 8, 16) breaks the equal spacing: no prediction.
     btHydrostaticsHistory gap;
-    for (std::uint64_t n : {4u, 8u, 16u}) gap.push(n, quadraticSnapshot(double(n)));
-    CHECK_FALSE(gap.canPredict(17, k));
-    CHECK_FALSE(gap.canCheck(20, k));
+    for (std::uint64_t n : {4u, 8u, 16u}) gap.push(n, double(n) * dt, quadraticSnapshot(double(n)));
+    CHECK_FALSE(gap.canPredict(17, 17 * dt, k));
+    CHECK_FALSE(gap.canCheck(20, 20 * dt, k));
+    // Records 4 substeps apart but not equally in time (the substep length changed between them).
+    btHydrostaticsHistory uneven;
+    uneven.push(4, 0.04, quadraticSnapshot(0.04));
+    uneven.push(8, 0.08, quadraticSnapshot(0.08));
+    uneven.push(12, 0.14, quadraticSnapshot(0.14));
+    CHECK_FALSE(uneven.canPredict(13, 0.155, k));
     gap.clear();
     CHECK(gap.size() == 0);
 }
@@ -116,7 +124,7 @@ TEST_CASE("hydrostatics history: volumes and areas extrapolated below zero are c
         s.hydrostatics.submerged_volume = 0.2 - 0.1 * n;  // 0.2, 0.1, 0.0 → −0.1 next
         s.hydrostatics.waterline_area = 0.2 - 0.1 * n;
         s.hydrostatics.wetted_area = 0.2 - 0.1 * n;
-        history.push(std::uint64_t(2 * n), s);
+        history.push(std::uint64_t(2 * n), double(2 * n), s);
     }
     const btHydrostaticsSnapshot p = history.extrapolate(6, 2);
     CHECK(p.hydrostatics.submerged_volume == 0.0);
@@ -250,10 +258,41 @@ TEST_CASE("interval 8: a light, stiff body is never predicted and stays bounded"
     CHECK(w.rejectedTotal() == 0);
 }
 
+TEST_CASE("the automatic interval evaluates exactly at least every 1/120 s", "[bullet][temporal]") {
+    CHECK(btBuoyancyAutomaticInterval(1.0 / 60.0) == 1);
+    CHECK(btBuoyancyAutomaticInterval(1.0 / 120.0) == 1);
+    CHECK(btBuoyancyAutomaticInterval(double(btScalar(1.0 / 240.0))) == 2);  // as Bullet passes it, in float too
+    CHECK(btBuoyancyAutomaticInterval(1.0 / 480.0) == 4);
+    CHECK(btBuoyancyAutomaticInterval(1.0 / 1000.0) == 8);
+    CHECK(btBuoyancyAutomaticInterval(1e-5) == 16);
+    CHECK(btBuoyancyAutomaticInterval(0.0) == 1);
+    CHECK(btBuoyancyAutomaticInterval(std::numeric_limits<double>::quiet_NaN()) == 1);
+    // In a simulation at 240 substeps/s the default predicts every other substep (waves, a slow body).
+    const btGerstnerWaterSurface sea(testSea());
+    btBuoyancySettings defaults;
+    defaults.method = btBuoyancyMethod::ExactMesh;
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(2.0, 0.6, 1.0), defaults);
+    BulletTestWorld w(&sea);
+    btBuoyantBodySettings body;
+    body.density = 500;
+    w.add(shape, body, makePose(btVector3(0, 0, 0)), defaults);
+    w.run(1.0);
+    long predicted = 0;
+    for (int n = 0; n < 480; ++n) {
+        w.step(1, 1);
+        predicted += w.action(0).getLastResult().predicted ? 1 : 0;
+    }
+    std::printf("default settings at 240 substeps/s in waves: %ld of 480 substeps predicted\n", predicted);
+    CHECK(predicted > 200);
+    CHECK(predicted <= 240);
+}
+
 TEST_CASE("hydrostaticsInterval and hydrostaticsReuseTolerance are validated", "[bullet][temporal]") {
     btBuoyancySettings s;
-    s.hydrostaticsInterval = 0;
+    s.hydrostaticsInterval = -1;
     CHECK_THROWS_WITH(s.validate(), Catch::Contains("hydrostaticsInterval") && Catch::Contains("1..16"));
+    s.hydrostaticsInterval = 0;  // automatic
+    CHECK_NOTHROW(s.validate());
     s.hydrostaticsInterval = 17;
     CHECK_THROWS_WITH(s.validate(), Catch::Contains("hydrostaticsInterval"));
     s.hydrostaticsInterval = 16;

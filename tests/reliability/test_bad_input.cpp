@@ -482,8 +482,8 @@ TEST_CASE("bad input: scene files name the file and the key", "[reliability][bad
                       Equals("s.json: bodies[0].buoyancy.water_patch_nodes_per_wavelength: value -2 out of range [0, 1000]"));
     CHECK(scene("{" + kBox + ", \"density\": 500, \"buoyancy\": {\"water_patch_nodes_per_wavelength\": 24}}")
               .bodies[0].buoyancy.waterPatchNodesPerWavelength == 24.0);
-    CHECK_THROWS_WITH(scene("{" + kBox + ", \"density\": 500, \"buoyancy\": {\"hydrostatics_interval\": 0}}"),
-                      Equals("s.json: bodies[0].buoyancy.hydrostatics_interval: value 0 out of range [1, 16]"));
+    CHECK_THROWS_WITH(scene("{" + kBox + ", \"density\": 500, \"buoyancy\": {\"hydrostatics_interval\": 17}}"),
+                      Equals("s.json: bodies[0].buoyancy.hydrostatics_interval: value 17 out of range [0, 16]"));
     CHECK_THROWS_WITH(scene("{" + kBox + ", \"density\": 500, \"buoyancy\": {\"hydrostatics_reuse_tolerance\": 0}}"),
                       Equals("s.json: bodies[0].buoyancy.hydrostatics_reuse_tolerance: value 0 out of range (0, 1]"));
     const auto temporal = scene("{" + kBox + ", \"density\": 500, \"buoyancy\": {\"hydrostatics_interval\": 4, "
