@@ -108,7 +108,9 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
                 btTransform t = btTransform::getIdentity();
                 const double yaw = 0.7 * i;  // varied headings
                 t.setRotation(btQuaternion(btVector3(0, 1, 0), btScalar(yaw)));
-                t.setOrigin(btVector3(btScalar(spacing * (i % side)), 0, btScalar(spacing * (i / side))));
+                // On the local water surface (not at the mean level, where the 4 m swell would drop or bury them).
+                const double x = spacing * (i % side), z = spacing * (i / side);
+                t.setOrigin(btVector3(btScalar(x), btScalar(water.height(x, z, 0.0)), btScalar(z)));
                 bodies.push_back(std::make_unique<btBuoyantBody>(shape, bs, t));
                 world.addRigidBody(bodies.back()->getRigidBody());
                 actions.push_back(std::make_unique<btBuoyancyAction>(*bodies.back(), &buoyancy, o.settings));
@@ -116,7 +118,10 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
             }
             world.addAction(&batch);
             const int perFrame = 4;  // 60 frames/s × 4 substeps
-            world.stepSimulation(btScalar(dt), 1, btScalar(dt));  // untimed first substep
+            // Untimed warm-up (warmupSeconds): the bodies settle from their starting pose into the waves, and the
+            // temporal level of detail has the exact evaluations it extrapolates from before the clock starts.
+            const long warmupFrames = std::max(1L, std::lround(o.warmupSeconds / (perFrame * dt)));
+            for (long f = 0; f < warmupFrames; ++f) world.stepSimulation(btScalar(perFrame * dt), perFrame, btScalar(dt));
             batch.seconds = 0;
             const double substeps = std::max(double(o.minSubsteps), std::min(o.simSeconds / dt, o.maxBodySubsteps / n));
             const long frames = std::max(1L, std::lround(substeps / perFrame));

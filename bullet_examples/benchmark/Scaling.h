@@ -19,7 +19,8 @@ namespace buoyancy::bench {
 struct ScalingOptions {
     std::vector<int> bodies{1, 10, 100, 1000}; ///< body counts
     std::vector<int> threads{1, 2};            ///< OpenMP thread counts for the buoyancy actions
-    double simSeconds = 1.0;                   ///< simulated time per run at most, s (after one untimed substep)
+    double simSeconds = 1.0;                   ///< simulated time per run at most, s (after the warm-up)
+    double warmupSeconds = 1.0;                ///< simulated untimed first, s (bodies settle into the waves)
     /// At most this many body-substeps are timed per run (the substep count is cut for many bodies, never
     /// below minSubsteps): the cost per body-substep is what is measured.
     double maxBodySubsteps = 8000;

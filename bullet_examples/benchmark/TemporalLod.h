@@ -1,0 +1,51 @@
+#pragma once
+/// @file TemporalLod.h
+/// The temporal level of detail (btBuoyancySettings::hydrostaticsInterval, issue 9) measured: a small fleet of
+/// the scaling model in the P3 sea at 240 substeps/s, for several intervals K, one thread. Per K: the time per
+/// body-substep of stepSimulation (Bullet included) and, at every substep after a 2 s settling, the error of the
+/// pressure force and torque the action applied against an exact evaluation (every triangle clipped, one exact
+/// wave query per vertex) at the body's pose and the water time of that substep. The errors of K = 1 are the
+/// default evaluation's own (the wave patch's); the difference is what prediction adds.
+
+#include "mesh/TriangleMesh.h"
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace buoyancy::bench {
+
+/// What to run.
+struct TemporalLodOptions {
+    std::vector<int> intervals{1, 0, 3, 4, 6, 8}; ///< hydrostaticsInterval values (0: the automatic default)
+    int bodies = 5;              ///< boats, 17 m apart, varied headings
+    double settleSeconds = 2.0;  ///< simulated before errors are taken, s
+    double seconds = 10.0;       ///< simulated while errors are taken, s
+};
+
+/// One row of temporal_lod.csv.
+struct TemporalLodRow {
+    std::string model;               ///< model id
+    std::size_t triangles = 0;       ///< triangles of the model
+    int interval = 0;                ///< hydrostaticsInterval asked for (0: automatic)
+    int resolvedInterval = 0;        ///< the interval used at 240 substeps/s
+    int bodies = 0;                  ///< bodies
+    double predictedPct = 0;         ///< substeps whose hydrostatics were predicted, % of body-substeps
+    double nsPerBodySubstep = 0;     ///< stepSimulation wall time / (bodies × substeps), ns, one thread
+    double forceErrorMeanPct = 0;    ///< |F − F_exact| / (ρ g V), mean over body-substeps, %
+    double forceErrorP99Pct = 0;     ///< 99th percentile, %
+    double forceErrorMaxPct = 0;     ///< worst, %
+    double torqueErrorMaxPct = 0;    ///< |τ − τ_exact| / (ρ g V × bounding diameter), worst, %
+};
+
+/// Run every interval of `options` with `mesh` (density 500 kg/m³, the library's default settings otherwise).
+std::vector<TemporalLodRow> runTemporalLod(const TriangleMesh& mesh, const std::string& model,
+                                           const TemporalLodOptions& options, std::ostream& log);
+
+/// Write temporal_lod.csv.
+void writeTemporalLodCsv(const std::string& path, const std::vector<TemporalLodRow>& rows);
+
+/// Markdown lines for the summary.
+std::string temporalLodMarkdown(const std::vector<TemporalLodRow>& rows);
+
+}  // namespace buoyancy::bench
