@@ -302,8 +302,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     // Temporal level of detail (settings.hydrostaticsInterval, btHydrostaticsHistory): exact at this body's
     // evaluation substeps, predicted in between while the checks allow it.
     const std::uint64_t substep = m_world->getSubstep();
-    const int interval =
-        m_settings.hydrostaticsInterval > 0 ? m_settings.hydrostaticsInterval : btBuoyancyAutomaticInterval(dt);
+    const int interval = btBuoyancyResolveInterval(m_settings, dt);
     m_interval = interval;
     const bool temporalLod =
         interval > 1 && m_settings.buoyancyEnabled && !m_deformable && !m_world->getDeviceBackend();

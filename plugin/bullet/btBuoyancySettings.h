@@ -90,7 +90,8 @@ struct btBuoyancySettings {
     /// deterministic. getLastResult().predicted says which substeps were predicted. Ignored (exact every
     /// substep) for deformable bodies and on a device backend.
     /// 0 (default) = automatic: an exact evaluation at least every 1/120 s (btBuoyancyAutomaticInterval: every
-    /// substep up to 120 substeps/s, every 2nd at 240/s, every 4th at 480/s). 1 = exact every substep. 2..16:
+    /// substep up to 120 substeps/s, every 2nd at 240/s, every 4th at 480/s), longer when errorBudget allows it
+    /// (btBuoyancyEvaluationPeriod: up to 1/30 s, every 8th substep at 240/s). 1 = exact every substep. 2..16:
     /// that K. Measured on the benchmark's 3,400-triangle boat in its 4-wave sea at 240 substeps/s against exact
     /// wave queries (docs/benchmarks/temporal_lod.csv): K = 2 leaves the force error where K = 1 has it (the wave
     /// patch's), K = 4 adds ≈ 0.0001 % of ρ g V on average and reaches 0.06 % at worst, K = 6 0.2 % at worst.
@@ -115,8 +116,21 @@ struct btBuoyancySettings {
 };
 
 /// The interval hydrostaticsInterval = 0 stands for at a substep of dt seconds: the largest K ≤ 16 with
-/// K·dt ≤ 1/120 s (at least 1).
-int btBuoyancyAutomaticInterval(double dt);
+/// K·dt ≤ periodSeconds (at least 1). The default period is the library's: an exact evaluation every 1/120 s.
+int btBuoyancyAutomaticInterval(double dt, double periodSeconds = 1.0 / 120.0);
+
+/// Temporal level of detail with hydrostaticsInterval = 0: the longest time between exact evaluations, s.
+/// Without an error budget 1/120 s. With settings.errorBudget > 0, the longest period of the measured temporal
+/// error model whose worst force error × kLodSafetyFactor (2) fits the budget (a force error of x % of ρ g V is a
+/// submerged-volume error of x % of V), never below 1/120 s. The model (docs/benchmarks/temporal_lod.csv: the
+/// 3,400-triangle boat in the P3 sea at 240 substeps/s; other bodies and seas can differ): 12.5 ms 0.025 %,
+/// 16.7 ms 0.060 %, 25 ms 0.21 %, 33 ms 0.27 %.
+/// @param[out] modelErrorPct  optional: the model's worst force error at that period, % of ρ g V
+double btBuoyancyEvaluationPeriod(const btBuoyancySettings& settings, double* modelErrorPct = nullptr);
+
+/// settings.hydrostaticsInterval resolved at a substep of dt seconds: itself when > 0, else
+/// btBuoyancyAutomaticInterval(dt, btBuoyancyEvaluationPeriod(settings)).
+int btBuoyancyResolveInterval(const btBuoyancySettings& settings, double dt);
 
 /// The concrete method Auto stands for, given the mesh's triangle count (delegates to
 /// buoyancy::resolveMethod, the one place that decides the library default); others are returned unchanged.
@@ -140,6 +154,9 @@ struct btBuoyancyLevelOfDetail {
     double modelVolumeErrorPct = 0;     ///< the error model's worst volume error for it, % of the volume
     double budgetPct = 0;               ///< settings.errorBudget (0: no budget, the library default rule)
     bool withinBudget = true;           ///< false when no configuration fits (the most accurate one is used)
+    /// Temporal level of detail (hydrostaticsInterval 0): longest time between exact evaluations, s
+    /// (btBuoyancyEvaluationPeriod); 0 when the settings fix the interval.
+    double evaluationPeriod = 0;
     std::string description;            ///< one line for logs and the CLI, e.g. "exact-coverage 128 (…)"
 };
 

@@ -287,6 +287,32 @@ TEST_CASE("the automatic interval evaluates exactly at least every 1/120 s", "[b
     CHECK(predicted <= 240);
 }
 
+TEST_CASE("an error budget lengthens the automatic interval, and the pick is described", "[bullet][temporal]") {
+    // The temporal model (btBuoyancyEvaluationPeriod's doc): 12.5 ms 0.025 %, 16.7 ms 0.060 %, 25 ms 0.21 %,
+    // 33 ms 0.27 % worst force error; a period is allowed when twice its error fits the budget.
+    btBuoyancySettings s;
+    const double dt = 1.0 / 240.0;
+    CHECK(btBuoyancyEvaluationPeriod(s) == Approx(1.0 / 120.0));
+    CHECK(btBuoyancyResolveInterval(s, dt) == 2);
+    s.errorBudget = 0.01;  // below every model point: the default period
+    CHECK(btBuoyancyResolveInterval(s, dt) == 2);
+    s.errorBudget = 0.1;   // 0.05 fits, 0.12 does not
+    CHECK(btBuoyancyEvaluationPeriod(s) == Approx(3.0 / 240.0));
+    CHECK(btBuoyancyResolveInterval(s, dt) == 3);
+    s.errorBudget = 0.6;   // every point fits: 1/30 s
+    double modelError = 0;
+    CHECK(btBuoyancyEvaluationPeriod(s, &modelError) == Approx(8.0 / 240.0));
+    CHECK(modelError == Approx(0.27));
+    CHECK(btBuoyancyResolveInterval(s, dt) == 8);
+    CHECK(btBuoyancyResolveInterval(s, 1.0 / 60.0) == 2);
+    const btBuoyancyLevelOfDetail lod = btBuoyancyPickLevelOfDetail(s, 3400);
+    CHECK(lod.evaluationPeriod == Approx(8.0 / 240.0));
+    CHECK_THAT(lod.description, Catch::Contains("exact hydrostatics every 33.3 ms"));
+    s.hydrostaticsInterval = 3;  // an explicit interval wins over the budget
+    CHECK(btBuoyancyResolveInterval(s, dt) == 3);
+    CHECK(btBuoyancyPickLevelOfDetail(s, 3400).evaluationPeriod == 0);
+}
+
 TEST_CASE("hydrostaticsInterval and hydrostaticsReuseTolerance are validated", "[bullet][temporal]") {
     btBuoyancySettings s;
     s.hydrostaticsInterval = -1;
