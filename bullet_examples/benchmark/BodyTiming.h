@@ -2,7 +2,8 @@
 /// @file BodyTiming.h
 /// Timing one body-substep: a Bullet world holding one dynamic body in flat water at y = 0, and a timer
 /// that calls an action's updateAction (the work Bullet does per body per substep) many times at a fixed
-/// pose with a fixed velocity (so drag is on), reporting nanoseconds per call.
+/// pose with a fixed velocity (so drag is on), reporting nanoseconds per call. Give the timed actions
+/// hydrostaticsInterval = 1: at a fixed pose the temporal level of detail would predict every other call.
 
 #include "bullet/btBuoyancyShape.h"
 

@@ -269,6 +269,7 @@ std::string runLodStudy(const std::vector<BenchShape>& shapes, const std::vector
             for (int k : ks) {
                 btBuoyancySettings st;
                 st.dragClusters = k;
+                st.hydrostaticsInterval = 1;  // every timed call computes the drag (no temporal prediction)
                 SingleBodyRig rig(shape);
                 btBuoyancyAction action(rig.body(), &rig.buoyancyWorld(), st);
                 double worstF = 0, worstT = 0, ns = 0;

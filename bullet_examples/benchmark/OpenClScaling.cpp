@@ -55,6 +55,7 @@ std::vector<OpenClScalingRow> runOpenClScaling(const TriangleMesh& mesh, const s
     for (Backend which : {Backend::Cpu, Backend::CpuExact, Backend::OpenClDouble, Backend::OpenClFloat}) {
         btBuoyancySettings s = settings;
         if (which != Backend::Cpu) s.waterPatchNodes = 0;  // exact water queries: the work the device does
+        s.hydrostaticsInterval = 1;  // every substep evaluated, as the device does (no temporal level of detail)
         for (int n : o.bodies) {
             btDefaultCollisionConfiguration config;
             btCollisionDispatcher dispatcher(&config);
