@@ -167,8 +167,8 @@ std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::v
     // P3 with a longer temporal level of detail (hydrostaticsInterval K; its force error: temporal_lod.csv below).
     for (const auto& r : scaling)
         if (r.bodies >= 1000 && r.threads == 2 && r.variant.rfind("interval ", 0) == 0)
-            md << "- With hydrostaticsInterval " << r.variant.substr(9) << " (exact every " << r.variant.substr(9)
-               << "th substep, predicted in between): " << fmt("%.0f", r.nsPerBodySubstepTotal)
+            md << "- With hydrostaticsInterval " << r.variant.substr(9)
+               << " (exact every K-th substep, predicted in between): " << fmt("%.0f", r.nsPerBodySubstepTotal)
                << " ns per body-substep on 2 threads, real-time factor " << fmt("%.3f", r.realtimeFactor) << " → "
                << (r.realtimeFactor >= 1 ? "real time" : "not real time") << ".\n";
     // Level of detail on/off in the same run (DESIGN-NOTES 2.5): the "no-lod" rows use dragClusters = 0 and

@@ -104,15 +104,17 @@ int runBench(const BenchOptions& o) {
             tk.bodies = {o.quick ? 10 : 1000};
             tk.threads = o.quick ? std::vector<int>{1} : std::vector<int>{1, 2};
             tk.settings.hydrostaticsInterval = k;
-            tk.variant = "interval " + std::to_string(k);
+            tk.settings.hydrostaticsReuseTolerance = 0.002;
+            tk.variant = "interval " + std::to_string(k) + " tolerance 0.2%";
             for (const ScalingRow& r : runScaling(boat, "boat-x4", tk, log)) scale.push_back(r);
         }
         TemporalLodOptions to;
         if (o.quick) {
-            to.intervals = {1, 0, 4};
+            to.configurations = {{1, 0.0}, {0, 0.0}, {4, 0.002}};
             to.bodies = 2;
             to.settleSeconds = 0.5;
             to.seconds = 0.5;
+            to.energySeconds = 5.0;
         }
         const std::vector<TemporalLodRow> temporal = runTemporalLod(boat, "boat-x4", to, log);
         writeTemporalLodCsv((fs::path(o.out) / "temporal_lod.csv").string(), temporal);

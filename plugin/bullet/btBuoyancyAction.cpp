@@ -304,6 +304,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     const std::uint64_t substep = m_world->getSubstep();
     const int interval = btBuoyancyResolveInterval(m_settings, dt);
     m_interval = interval;
+    m_tolerance = btBuoyancyResolveReuseTolerance(m_settings);
     const bool temporalLod =
         interval > 1 && m_settings.buoyancyEnabled && !m_deformable && !m_world->getDeviceBackend();
     const bool evaluationSubstep = temporalLod && (substep + m_phase) % std::uint64_t(interval) == 0;
@@ -480,7 +481,7 @@ double btBuoyancyAction::allowedPoseDeviation(double waterlineArea) const {
     // under water (A_waterline = 0) is bounded by V^(1/3).
     const double volume = m_shape->getUnitSolid().volume;
     const double volume23 = std::cbrt(volume) * std::cbrt(volume);
-    return m_settings.hydrostaticsReuseTolerance * volume / std::max(waterlineArea, volume23);
+    return m_tolerance * volume / std::max(waterlineArea, volume23);
 }
 
 double btBuoyancyAction::allowedVelocityDeviation(double waterlineArea) const {
@@ -489,7 +490,7 @@ double btBuoyancyAction::allowedVelocityDeviation(double waterlineArea) const {
     const double volume = m_shape->getUnitSolid().volume;
     const double volume23 = std::cbrt(volume) * std::cbrt(volume);
     const double length = volume / std::max(waterlineArea, volume23);
-    return m_settings.hydrostaticsReuseTolerance * std::sqrt(m_world->getGravity() * length);
+    return m_tolerance * std::sqrt(m_world->getGravity() * length);
 }
 
 bool btBuoyancyAction::predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose,
@@ -518,7 +519,7 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
         const btHydrostaticsSnapshot p = m_history.extrapolate(substep, interval);
         const double error = std::max((p.hydrostatics.force - h.force).norm() / scale,
                                       (p.hydrostatics.torque - h.torque).norm() / (scale * diameter));
-        if (!(error <= m_settings.hydrostaticsReuseTolerance))
+        if (!(error <= m_tolerance))
             m_reuseCooldown = 3;
         else if (m_reuseCooldown > 0)
             --m_reuseCooldown;

@@ -152,6 +152,7 @@ private:
     int m_reuseCooldown = 0;           ///< evaluation substeps left before predicting again (a check failed)
     std::uint64_t m_phase = 0;         ///< the body evaluates exactly when (substep + m_phase) % interval == 0
     int m_interval = 1;                ///< this substep's interval (settings.hydrostaticsInterval resolved)
+    double m_tolerance = 1e-4;         ///< this substep's prediction tolerance (btBuoyancyResolveReuseTolerance)
     Eigen::Vector3d m_lastMeanWaterVelocity = Eigen::Vector3d::Zero(); ///< of the last computed drag, m/s
     ///@}
     // Workspace sized once (no allocation per substep).

@@ -93,14 +93,20 @@ struct btBuoyancySettings {
     /// substep up to 120 substeps/s, every 2nd at 240/s, every 4th at 480/s), longer when errorBudget allows it
     /// (btBuoyancyEvaluationPeriod: up to 1/30 s, every 8th substep at 240/s). 1 = exact every substep. 2..16:
     /// that K. Measured on the benchmark's 3,400-triangle boat in its 4-wave sea at 240 substeps/s against exact
-    /// wave queries (docs/benchmarks/temporal_lod.csv): K = 2 leaves the force error where K = 1 has it (the wave
-    /// patch's), K = 4 adds ≈ 0.0001 % of ρ g V on average and reaches 0.06 % at worst, K = 6 0.2 % at worst.
+    /// wave queries (docs/benchmarks/temporal_lod.csv): the default predicts half the substeps and leaves the force
+    /// error where exact evaluation has it (the wave patch's); with the tolerance at 0.2 %, K = 6 predicts ≈ 83 %
+    /// at a worst force error of 0.2 % of ρ g V. Longer intervals cost energy conservation: extrapolated forces lead
+    /// the motion slightly, so an undamped bobbing body gains energy (temporal_lod.csv's energy column; ≈ 3 % per
+    /// minute at 1/60 s, within issue 2's 1 % at the default 1/120 s); drag damps far more than that.
     int hydrostaticsInterval = 0;
     /// Largest prediction error accepted by hydrostaticsInterval's checks, as a fraction of the body's full
-    /// buoyancy ρ g V (force) and of ρ g V × its bounding diameter (torque); the pose check allows a drift of this
-    /// fraction × V / A_waterline (the draft change that would change the force by this fraction). A failed check
-    /// makes the body evaluate exactly for the next three intervals. Default 0.002 (0.2 %); finite, > 0, ≤ 1.
-    double hydrostaticsReuseTolerance = 0.002;
+    /// buoyancy ρ g V (force; a force error of x is a submerged-volume error of x·V) and of ρ g V × its bounding
+    /// diameter (torque); the pose check allows a drift of this fraction × V / A_waterline (the draft change that
+    /// would change the force by this fraction). A failed check makes the body evaluate exactly for the next three
+    /// intervals. Default 1e-4 (0.01 %: issue 2's accuracy for the submerged volume); with an errorBudget and an
+    /// automatic interval the tolerance used is at least errorBudget / 2 (btBuoyancyResolveReuseTolerance).
+    /// Finite, > 0, ≤ 1.
+    double hydrostaticsReuseTolerance = 1e-4;
 
     ///@name Added mass (DESIGN-NOTES 2.7)
     /// Apply added mass m_a = C_a ρ_w V_sub to the linear motion (one scalar, Stonefish-style; rotation has
@@ -131,6 +137,10 @@ double btBuoyancyEvaluationPeriod(const btBuoyancySettings& settings, double* mo
 /// settings.hydrostaticsInterval resolved at a substep of dt seconds: itself when > 0, else
 /// btBuoyancyAutomaticInterval(dt, btBuoyancyEvaluationPeriod(settings)).
 int btBuoyancyResolveInterval(const btBuoyancySettings& settings, double dt);
+
+/// The prediction tolerance used (fraction of ρ g V): settings.hydrostaticsReuseTolerance, raised to
+/// errorBudget / 200 (the budget in %, halved) when the interval is automatic and a budget is set.
+double btBuoyancyResolveReuseTolerance(const btBuoyancySettings& settings);
 
 /// The concrete method Auto stands for, given the mesh's triangle count (delegates to
 /// buoyancy::resolveMethod, the one place that decides the library default); others are returned unchanged.

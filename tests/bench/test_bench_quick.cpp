@@ -155,6 +155,9 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
             CHECK(num(t[i], cn) > 0);
         }
         CHECK(intervals == std::set<int>{0, 1, 4});
+        const int ce = column(t, "energy_drift_pct");
+        for (std::size_t i = 1; i < t.size(); ++i)
+            if (int(num(t[i], ck)) == 1) CHECK(num(t[i], ce) < 0.1);  // exact every substep: energy kept
     }
     {  // waves_lod.csv / drag_lod.csv: the level of detail (DESIGN-NOTES 2.5) adds little error
         const Table w = readCsv(o.out + "/waves_lod.csv");

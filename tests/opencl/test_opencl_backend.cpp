@@ -35,6 +35,7 @@ btBuoyancySettings sampled(int n) {
     s.textureSize = n;
     s.waterPatchNodes = 0;  // exact water queries on the CPU too (the device always queries exactly)
     s.skinFriction = 0.005; // every drag term in use
+    s.hydrostaticsInterval = 1;  // every substep evaluated on the CPU too, as the device does
     return s;
 }
 
