@@ -84,9 +84,9 @@ int runBench(const BenchOptions& o) {
     std::string breakdown, temporalMd;
     if (scaling) {
         ScalingOptions so;
-        // 1,000 bodies get 48 substeps (0.2 s simulated): with the struct's 8000 body-substeps they got 8, and the
-        // 2-thread row moved by ±15 % from run to run.
-        so.maxBodySubsteps = 48000;
+        // 1,000 bodies get 240 substeps (1 s simulated): with 48 (0.2 s) the 2-thread rows of the temporal level of
+        // detail moved by ±25 % from run to run (a tenth of a wave period decides how many predictions pass).
+        so.maxBodySubsteps = 240000;
         if (o.quick) {
             so.bodies = {1, 10, 100};
             so.simSeconds = 1.0 / 30;
