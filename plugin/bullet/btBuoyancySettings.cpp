@@ -61,7 +61,8 @@ void btBuoyancySettings::validate() const {
     if (hydrostaticsInterval < 0 || hydrostaticsInterval > 16)
         throw std::invalid_argument("hydrostaticsInterval: must be 0 (automatic) or in 1..16 (got " +
                                     std::to_string(hydrostaticsInterval) + ")");
-    if (!(hydrostaticsReuseTolerance > 0 && hydrostaticsReuseTolerance <= 1))
+    // std::isfinite first: an ordered comparison with NaN raises FE_INVALID (bad input must not trap, issue 10).
+    if (!std::isfinite(hydrostaticsReuseTolerance) || hydrostaticsReuseTolerance <= 0 || hydrostaticsReuseTolerance > 1)
         throw std::invalid_argument("hydrostaticsReuseTolerance: must be a finite number in (0, 1] (got " +
                                     std::to_string(hydrostaticsReuseTolerance) + ")");
     if (waterPatchNodes != 0 && (waterPatchNodes < 5 || waterPatchNodes > 64))
@@ -168,7 +169,7 @@ constexpr double kDefaultEvaluationPeriod = 1.0 / 120.0;
 
 double btBuoyancyEvaluationPeriod(const btBuoyancySettings& settings, double* modelErrorPct) {
     double period = kDefaultEvaluationPeriod, error = 0;
-    if (settings.errorBudget > 0 && std::isfinite(settings.errorBudget))
+    if (std::isfinite(settings.errorBudget) && settings.errorBudget > 0)
         for (const TemporalModelPoint& p : kTemporalModel)
             if (p.worstForceErrorPct * buoyancy::kLodSafetyFactor <= settings.errorBudget && p.period > period) {
                 period = p.period;
@@ -185,13 +186,14 @@ int btBuoyancyResolveInterval(const btBuoyancySettings& settings, double dt) {
 
 double btBuoyancyResolveReuseTolerance(const btBuoyancySettings& settings) {
     double tolerance = settings.hydrostaticsReuseTolerance;
-    if (settings.hydrostaticsInterval == 0 && settings.errorBudget > 0 && std::isfinite(settings.errorBudget))
+    if (settings.hydrostaticsInterval == 0 && std::isfinite(settings.errorBudget) && settings.errorBudget > 0)
         tolerance = std::max(tolerance, std::min(1.0, settings.errorBudget / 100.0 / buoyancy::kLodSafetyFactor));
     return tolerance;
 }
 
 int btBuoyancyAutomaticInterval(double dt, double periodSeconds) {
-    if (!(dt > 0) || !std::isfinite(dt) || !(periodSeconds > 0) || !std::isfinite(periodSeconds)) return 1;
+    // std::isfinite first: an ordered comparison with NaN raises FE_INVALID.
+    if (!std::isfinite(dt) || !std::isfinite(periodSeconds) || dt <= 0 || periodSeconds <= 0) return 1;
     const double ratio = periodSeconds / dt;
     return int(std::max(1.0, std::min(16.0, std::floor(ratio + 1e-6))));
 }
