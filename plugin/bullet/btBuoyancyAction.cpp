@@ -501,6 +501,14 @@ bool btBuoyancyAction::predictHydrostatics(std::uint64_t substep, const Eigen::I
     // Pose check: a body moved by a contact, a teleport or an impulse leaves the extrapolated pose.
     const double deviation =
         btHydrostaticsHistory::poseDeviation(com, pose.linear(), predicted, m_shape->getBoundsRadius());
+    // Heave stiffness (DESIGN-NOTES 2.7, k = ρ g A_waterline): the linear part of the restoring force follows the
+    // body's actual height, not the extrapolated one. With F = −k y + G(t) the prediction is then −k y + E[G]
+    // (E the extrapolation): only the smooth remainder G is extrapolated. Extrapolating all of F instead leads the
+    // motion of a bobbing body slightly and pumps energy into it (measured: temporal_lod.csv, energy column).
+    const double dy = com.y() - predicted.com.y();
+    const double aw = predicted.hydrostatics.waterline_area;
+    predicted.hydrostatics.force.y() -= m_world->getFluidDensity() * m_world->getGravity() * aw * dy;
+    predicted.hydrostatics.submerged_volume = std::max(predicted.hydrostatics.submerged_volume - aw * dy, 0.0);
     return deviation <= allowedPoseDeviation(predicted.hydrostatics.waterline_area) &&
            predicted.hydrostatics.force.allFinite() && predicted.hydrostatics.torque.allFinite() &&
            predicted.dragForce.allFinite() && predicted.dragTorque.allFinite();

@@ -82,22 +82,24 @@ struct btBuoyancySettings {
     double waterPatchNodesPerWavelength = 16.0;
     /// Temporal level of detail (issue 9; btHydrostaticsHistory): evaluate the hydrostatics and drag exactly
     /// every K-th substep and predict them in between by extrapolating the last three exact evaluations
-    /// quadratically in time. A body predicts only while its pose and velocity stay within
+    /// quadratically in time, the heave force corrected for the body's actual height (the waterline's stiffness
+    /// ρ g A_waterline: the linear part of the restoring force follows the actual pose, so a bobbing body keeps its
+    /// energy). A body predicts only while its pose and velocity stay within
     /// hydrostaticsReuseTolerance of the ones extrapolated the same way (a contact or a teleport makes it
     /// evaluate exactly), while its heave is slow against the interval (ω K dt ≤ 0.3, ω² = ρ g A_waterline /
     /// m_eff), and while the last check of the predictor against an exact evaluation passed. Bodies of one world
     /// take turns (staggered by registration order), so the cost per substep stays even; results are
     /// deterministic. getLastResult().predicted says which substeps were predicted. Ignored (exact every
     /// substep) for deformable bodies and on a device backend.
-    /// 0 (default) = automatic: an exact evaluation at least every 1/120 s (btBuoyancyAutomaticInterval: every
-    /// substep up to 120 substeps/s, every 2nd at 240/s, every 4th at 480/s), longer when errorBudget allows it
+    /// 0 (default) = automatic: an exact evaluation at least every 1/60 s (btBuoyancyAutomaticInterval: every
+    /// substep up to 60 substeps/s, every 2nd at 120/s, every 4th at 240/s), longer when errorBudget allows it
     /// (btBuoyancyEvaluationPeriod: up to 1/30 s, every 8th substep at 240/s). 1 = exact every substep. 2..16:
     /// that K. Measured on the benchmark's 3,400-triangle boat in its 4-wave sea at 240 substeps/s against exact
-    /// wave queries (docs/benchmarks/temporal_lod.csv): the default predicts half the substeps and leaves the force
-    /// error where exact evaluation has it (the wave patch's); with the tolerance at 0.2 %, K = 6 predicts ≈ 83 %
-    /// at a worst force error of 0.2 % of ρ g V. Longer intervals cost energy conservation: extrapolated forces lead
-    /// the motion slightly, so an undamped bobbing body gains energy (temporal_lod.csv's energy column; ≈ 3 % per
-    /// minute at 1/60 s, within issue 2's 1 % at the default 1/120 s); drag damps far more than that.
+    /// wave queries (docs/benchmarks/temporal_lod.csv): the default predicts ≈ 2/3 of the substeps and leaves the
+    /// force error about where exact evaluation has it (the wave patch's); with the tolerance at 0.2 %, K = 6
+    /// predicts ≈ 83 % at a worst force error of 0.2 % of ρ g V. Energy of an undamped bobbing body: see
+    /// temporal_lod.csv (a wall-sided box keeps it as exact evaluation does; without the heave correction it
+    /// gained 3 % a minute at 1/60 s).
     int hydrostaticsInterval = 0;
     /// Largest prediction error accepted by hydrostaticsInterval's checks, as a fraction of the body's full
     /// buoyancy ρ g V (force; a force error of x is a submerged-volume error of x·V) and of ρ g V × its bounding
@@ -122,13 +124,13 @@ struct btBuoyancySettings {
 };
 
 /// The interval hydrostaticsInterval = 0 stands for at a substep of dt seconds: the largest K ≤ 16 with
-/// K·dt ≤ periodSeconds (at least 1). The default period is the library's: an exact evaluation every 1/120 s.
-int btBuoyancyAutomaticInterval(double dt, double periodSeconds = 1.0 / 120.0);
+/// K·dt ≤ periodSeconds (at least 1). The default period is the library's: an exact evaluation every 1/60 s.
+int btBuoyancyAutomaticInterval(double dt, double periodSeconds = 1.0 / 60.0);
 
 /// Temporal level of detail with hydrostaticsInterval = 0: the longest time between exact evaluations, s.
-/// Without an error budget 1/120 s. With settings.errorBudget > 0, the longest period of the measured temporal
+/// Without an error budget 1/60 s. With settings.errorBudget > 0, the longest period of the measured temporal
 /// error model whose worst force error × kLodSafetyFactor (2) fits the budget (a force error of x % of ρ g V is a
-/// submerged-volume error of x % of V), never below 1/120 s. The model (docs/benchmarks/temporal_lod.csv: the
+/// submerged-volume error of x % of V), never below 1/60 s. The model (docs/benchmarks/temporal_lod.csv: the
 /// 3,400-triangle boat in the P3 sea at 240 substeps/s; other bodies and seas can differ): 12.5 ms 0.025 %,
 /// 16.7 ms 0.060 %, 25 ms 0.21 %, 33 ms 0.27 %.
 /// @param[out] modelErrorPct  optional: the model's worst force error at that period, % of ρ g V
