@@ -46,6 +46,7 @@ struct TemporalLodRow {
     double forceErrorMaxPct = 0;     ///< worst, %
     double torqueErrorMaxPct = 0;    ///< |τ − τ_exact| / (ρ g V × bounding diameter), worst, %
     double energyDriftPct = 0;       ///< undamped bobbing box: worst |E(t) − E(0)| over 60 s, % of E(0) above rest
+    double sphereAmplitudeChangePct = 0; ///< undamped bobbing sphere: heave amplitude, last 5 s against first 5 s, %
 };
 
 /// Run every interval of `options` with `mesh` (density 500 kg/m³, the library's default settings otherwise).
