@@ -3,6 +3,8 @@
 #include "bullet/btBuoyancyAction.h"
 #include "bullet/btBuoyancyWorld.h"
 #include "bullet/btBuoyantBodyBuilder.h"
+#include "integrals/Hydrostatics.h"
+#include "water/btWaterSurface.h"
 #include "water/btGerstnerWaterSurface.h"
 
 #include <btBulletDynamicsCommon.h>
@@ -11,6 +13,7 @@
 #include <omp.h>
 #endif
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -58,6 +61,25 @@ std::vector<btGerstnerWave> p3Sea() {
 
 namespace {
 std::vector<btGerstnerWave> sea() { return p3Sea(); }
+
+/// Height of the mesh origin above flat water at which the unrotated mesh floats (V_sub = densityRatio · V), found
+/// by bisection on the exact clip: the bodies start near equilibrium, so the timed second is not their first plunge.
+double floatingHeight(const TriangleMesh& mesh, double volume, double densityRatio) {
+    double lo = 1e300, hi = -1e300;
+    for (const auto& v : mesh.vertices) {
+        lo = std::min(lo, v.y());
+        hi = std::max(hi, v.y());
+    }
+    const btFlatWaterSurface flat(0.0);
+    double a = -hi, b = -lo;  // origin heights: fully under (V_sub = V) … fully above (0)
+    for (int i = 0; i < 60; ++i) {
+        const double y = 0.5 * (a + b);
+        const Eigen::Isometry3d pose(Eigen::Translation3d(0, y, 0));
+        const double v = clippedHydrostatics(mesh, pose, flat, 0.0, 1000.0, 9.81, Eigen::Vector3d::Zero()).submerged_volume;
+        (v > densityRatio * volume ? a : b) = y;
+    }
+    return 0.5 * (a + b);
+}
 }  // namespace
 
 bool scalingHasOpenMP() {
@@ -80,6 +102,8 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
         hi = hi.cwiseMax(v);
     }
     const double spacing = 4.0 * (hi - lo).maxCoeff();  // four body lengths
+    const double density = 500.0;
+    const double floating = floatingHeight(mesh, shape->getUnitSolid().volume, density / 1000.0);
     const btGerstnerWaterSurface water(sea());
     const double dt = 1.0 / o.substepsPerSecond;
     for (int threads : o.threads) {
@@ -102,15 +126,16 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
             std::vector<std::unique_ptr<btBuoyancyAction>> actions;
             ParallelBuoyancy batch;
             btBuoyantBodySettings bs;
-            bs.density = 500.0;
+            bs.density = density;
             const int side = int(std::ceil(std::sqrt(double(n))));
             for (int i = 0; i < n; ++i) {
                 btTransform t = btTransform::getIdentity();
                 const double yaw = 0.7 * i;  // varied headings
                 t.setRotation(btQuaternion(btVector3(0, 1, 0), btScalar(yaw)));
-                // On the local water surface (not at the mean level, where the 4 m swell would drop or bury them).
+                // Floating on the local water surface (not at the mean level, where the 4 m swell would drop or bury
+                // them): the draft of flat-water equilibrium below the local height.
                 const double x = spacing * (i % side), z = spacing * (i / side);
-                t.setOrigin(btVector3(btScalar(x), btScalar(water.height(x, z, 0.0)), btScalar(z)));
+                t.setOrigin(btVector3(btScalar(x), btScalar(water.height(x, z, 0.0) + floating), btScalar(z)));
                 bodies.push_back(std::make_unique<btBuoyantBody>(shape, bs, t));
                 world.addRigidBody(bodies.back()->getRigidBody());
                 actions.push_back(std::make_unique<btBuoyancyAction>(*bodies.back(), &buoyancy, o.settings));
