@@ -32,38 +32,58 @@ std::string fmt(const char* f, double v) {
     return b;
 }
 
-/// Worst energy drift of an undamped bobbing box over `seconds` at 240 substeps/s, % of its energy above rest.
-double energyDriftPct(btBuoyancySettings settings, double seconds) {
-    const double a = 2, c = 1, b = 2, s = 0.5, rho = 1000, g = 9.81, dt = 1.0 / 240.0;
-    settings.method = btBuoyancyMethod::ExactMesh;
-    settings.dragCoefficient = 0;
-    settings.linearDamping = 0;
-    settings.skinFriction = 0;
-    settings.addedMass = false;
-    const auto shape = btBuoyancyShape::create(makeBoxMesh(a, c, b), settings);
+/// A Bullet world (its four usual parts) with gravity −g ŷ.
+struct BulletWorld {
     btDefaultCollisionConfiguration config;
-    btCollisionDispatcher dispatcher(&config);
+    btCollisionDispatcher dispatcher{&config};
     btDbvtBroadphase broadphase;
     btSequentialImpulseConstraintSolver solver;
-    btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
-    world.setGravity(btVector3(0, btScalar(-g), 0));
-    const btFlatWaterSurface flat(0.0);
-    btBuoyancyWorld buoyancy(&flat, rho, g);
-    btBuoyantBodySettings bs;
-    bs.density = rho * s;
+    btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+    explicit BulletWorld(double g) { world.setGravity(btVector3(0, btScalar(-g), 0)); }
+};
+
+/// One undamped body (exact-mesh, drag, damping and added mass off; `settings`' temporal level of detail kept) of
+/// density ρ_w·ratio in flat water at 0, released level with its mesh origin at `height`, stepped at 240 substeps/s.
+struct UndampedBody {
+    static constexpr double kDt = 1.0 / 240.0;  ///< substep, s
+    BulletWorld bullet{9.81};
+    btFlatWaterSurface flat{0.0};
+    btBuoyancyWorld buoyancy{&flat, 1000.0, 9.81};
+    std::unique_ptr<btBuoyantBody> body;
+    std::unique_ptr<btBuoyancyAction> action;
+    UndampedBody(const TriangleMesh& mesh, double ratio, double height, btBuoyancySettings settings) {
+        settings.method = btBuoyancyMethod::ExactMesh;
+        settings.dragCoefficient = 0;
+        settings.linearDamping = 0;
+        settings.skinFriction = 0;
+        settings.addedMass = false;
+        btBuoyantBodySettings bs;
+        bs.density = 1000.0 * ratio;
+        btTransform t = btTransform::getIdentity();
+        t.setOrigin(btVector3(0, btScalar(height), 0));
+        body = std::make_unique<btBuoyantBody>(btBuoyancyShape::create(mesh, settings), bs, t);
+        bullet.world.addRigidBody(body->getRigidBody());
+        action = std::make_unique<btBuoyancyAction>(*body, &buoyancy, settings);
+        bullet.world.addAction(action.get());
+    }
+    ~UndampedBody() {
+        bullet.world.removeAction(action.get());
+        bullet.world.removeRigidBody(body->getRigidBody());
+    }
+    void step() { bullet.world.stepSimulation(btScalar(kDt), 1, btScalar(kDt)); }
+};
+
+/// Worst energy drift of an undamped bobbing box over `seconds` at 240 substeps/s, % of its energy above rest.
+double energyDriftPct(const btBuoyancySettings& settings, double seconds) {
+    const double a = 2, c = 1, b = 2, s = 0.5, rho = 1000, g = 9.81, dt = UndampedBody::kDt;
     const double yEq = c / 2 - s * c;
-    btTransform t = btTransform::getIdentity();
-    t.setOrigin(btVector3(0, btScalar(yEq - 0.1), 0));
-    btBuoyantBody body(shape, bs, t);
-    world.addRigidBody(body.getRigidBody());
-    btBuoyancyAction action(body, &buoyancy, settings);
-    world.addAction(&action);
-    btRigidBody* rb = body.getRigidBody();
+    UndampedBody u(makeBoxMesh(a, c, b), s, yEq - 0.1, settings);
+    btRigidBody* rb = u.body->getRigidBody();
     const double m = 1.0 / double(rb->getInvMass());
     // Mechanical energy: kinetic (the velocity at the current pose: the mean of Bullet's stored v, which holds this
     // substep's buoyancy kick, and v + g dt) + gravity + buoyancy potential ρ g A d²/2 (wall-sided, 0 < d < c).
     auto energy = [&]() {
-        const btBuoyancyResult& r = action.getLastResult();
+        const btBuoyancyResult& r = u.action->getLastResult();
         const btVector3 v = rb->getLinearVelocity() +
                             btScalar(0.5 * dt) * (rb->getGravity() - r.buoyancyForce * rb->getInvMass());
         const double y = double(rb->getCenterOfMassPosition().y());
@@ -72,55 +92,29 @@ double energyDriftPct(btBuoyancySettings settings, double seconds) {
     };
     const double dRest = s * c;
     const double eRest = m * g * (c / 2 - dRest) + 0.5 * rho * g * a * b * dRest * dRest;
-    world.stepSimulation(btScalar(dt), 1, btScalar(dt));
+    u.step();
     const double e0 = energy() - eRest;
     double worst = 0;
     for (long k = 0; k < std::lround(seconds / dt); ++k) {
-        world.stepSimulation(btScalar(dt), 1, btScalar(dt));
+        u.step();
         worst = std::max(worst, std::abs(energy() - eRest - e0));
     }
-    world.removeAction(&action);
-    world.removeRigidBody(rb);
     return 100.0 * worst / e0;
 }
 
 /// An undamped bobbing sphere (R 0.5 m, 48 × 24, density ratio 0.5, released 0.15 m below equilibrium, 240
 /// substeps/s): its heave amplitude over the last 5 s of `seconds` against the first 5 s, % change (a sphere's
 /// waterline changes with its draft, so unlike the wall-sided box its restoring force is not linear).
-double sphereAmplitudeChangePct(btBuoyancySettings settings, double seconds) {
-    const double dt = 1.0 / 240.0;
-    settings.method = btBuoyancyMethod::ExactMesh;
-    settings.dragCoefficient = 0;
-    settings.linearDamping = 0;
-    settings.skinFriction = 0;
-    settings.addedMass = false;
-    const auto shape = btBuoyancyShape::create(makeSphereMesh(0.5, 48, 24), settings);
-    btDefaultCollisionConfiguration config;
-    btCollisionDispatcher dispatcher(&config);
-    btDbvtBroadphase broadphase;
-    btSequentialImpulseConstraintSolver solver;
-    btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
-    world.setGravity(btVector3(0, btScalar(-9.81), 0));
-    const btFlatWaterSurface flat(0.0);
-    btBuoyancyWorld buoyancy(&flat, 1000.0, 9.81);
-    btBuoyantBodySettings bs;
-    bs.density = 500.0;
-    btTransform t = btTransform::getIdentity();
-    t.setOrigin(btVector3(0, btScalar(-0.15), 0));
-    btBuoyantBody body(shape, bs, t);
-    world.addRigidBody(body.getRigidBody());
-    btBuoyancyAction action(body, &buoyancy, settings);
-    world.addAction(&action);
-    const long n = std::lround(seconds / dt), window = std::lround(5.0 / dt);
+double sphereAmplitudeChangePct(const btBuoyancySettings& settings, double seconds) {
+    UndampedBody u(makeSphereMesh(0.5, 48, 24), 0.5, -0.15, settings);
+    const long n = std::lround(seconds / UndampedBody::kDt), window = std::lround(5.0 / UndampedBody::kDt);
     double lo1 = 1e300, hi1 = -1e300, lo2 = 1e300, hi2 = -1e300;
     for (long k = 0; k < n; ++k) {
-        world.stepSimulation(btScalar(dt), 1, btScalar(dt));
-        const double y = double(body.getRigidBody()->getCenterOfMassPosition().y());
+        u.step();
+        const double y = double(u.body->getRigidBody()->getCenterOfMassPosition().y());
         if (k < window) lo1 = std::min(lo1, y), hi1 = std::max(hi1, y);
         if (k >= n - window) lo2 = std::min(lo2, y), hi2 = std::max(hi2, y);
     }
-    world.removeAction(&action);
-    world.removeRigidBody(body.getRigidBody());
     return 100.0 * ((hi2 - lo2) / (hi1 - lo1) - 1.0);
 }
 }  // namespace
@@ -136,12 +130,8 @@ std::vector<TemporalLodRow> runTemporalLod(const TriangleMesh& mesh, const std::
         settings.hydrostaticsInterval = interval;
         if (tolerance > 0) settings.hydrostaticsReuseTolerance = tolerance;
         const auto shape = btBuoyancyShape::create(mesh, settings);
-        btDefaultCollisionConfiguration config;
-        btCollisionDispatcher dispatcher(&config);
-        btDbvtBroadphase broadphase;
-        btSequentialImpulseConstraintSolver solver;
-        btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
-        world.setGravity(btVector3(0, btScalar(-g), 0));
+        BulletWorld bullet(g);
+        btDiscreteDynamicsWorld& world = bullet.world;
         btBuoyancyWorld buoyancy(&water, rho, g);
         btBuoyantBodySettings bs;
         bs.density = 500.0;
