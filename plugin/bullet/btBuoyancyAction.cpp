@@ -475,22 +475,24 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     BT_BUOYANCY_CHECK_BODY(*m_body);
 }
 
-double btBuoyancyAction::allowedPoseDeviation(double waterlineArea) const {
-    // A drift δ changes the pressure force by about ρ g A_waterline δ, a fraction A_waterline δ / V of ρ g V:
-    // allow the tolerance's worth. V / A_waterline is the draft change that moves the force by ρ g V; a body
-    // under water (A_waterline = 0) is bounded by V^(1/3).
+double btBuoyancyAction::reuseLength(double waterlineArea) const {
+    // ℓ = V / A_waterline: the draft change that moves the pressure force by ρ g V; a body under water
+    // (A_waterline = 0) is bounded by V^(1/3).
     const double volume = m_shape->getUnitSolid().volume;
     const double volume23 = std::cbrt(volume) * std::cbrt(volume);
-    return m_tolerance * volume / std::max(waterlineArea, volume23);
+    return volume / std::max(waterlineArea, volume23);
+}
+
+double btBuoyancyAction::allowedPoseDeviation(double waterlineArea) const {
+    // A drift δ changes the pressure force by about ρ g A_waterline δ, a fraction δ / ℓ of ρ g V: allow the
+    // tolerance's worth.
+    return m_tolerance * reuseLength(waterlineArea);
 }
 
 double btBuoyancyAction::allowedVelocityDeviation(double waterlineArea) const {
-    // The velocity scale of the pose scale ℓ = V / A_waterline: sqrt(g ℓ) (the speed of a body falling through its
-    // draft); drag changes by a fraction of the tolerance when the velocity leaves the extrapolated one by that.
-    const double volume = m_shape->getUnitSolid().volume;
-    const double volume23 = std::cbrt(volume) * std::cbrt(volume);
-    const double length = volume / std::max(waterlineArea, volume23);
-    return m_tolerance * std::sqrt(m_world->getGravity() * length);
+    // The velocity scale of ℓ: sqrt(g ℓ) (the speed of a body falling through its draft); drag changes by a
+    // fraction of the tolerance when the velocity leaves the extrapolated one by that.
+    return m_tolerance * std::sqrt(m_world->getGravity() * reuseLength(waterlineArea));
 }
 
 bool btBuoyancyAction::predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose,

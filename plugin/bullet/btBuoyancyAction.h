@@ -122,6 +122,9 @@ private:
     /// Temporal level of detail: after an exact evaluation at one of the body's evaluation substeps, check the
     /// predictor against it, then record it.
     void recordHydrostatics(std::uint64_t substep, const btHydrostaticsSnapshot& exact, double effectiveMass, double dt);
+    /// Temporal level of detail: ℓ = V / max(A_waterline, V^(2/3)), the draft change that moves the pressure force by
+    /// ρ g V, m; the pose and velocity checks scale with it.
+    double reuseLength(double waterlineArea) const;
     /// Temporal level of detail: the velocity deviation (btHydrostaticsHistory::velocityDeviation) up to which the
     /// extrapolated drag is used, m/s.
     double allowedVelocityDeviation(double waterlineArea) const;
