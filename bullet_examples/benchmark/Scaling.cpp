@@ -30,7 +30,10 @@ using Clock = std::chrono::steady_clock;
 /// Runs every body's btBuoyancyAction once per substep, across threads. The first action runs alone: it
 /// advances the shared water clock (btBuoyancyWorld::beginSubstepIfNew); the others then only read it and
 /// touch their own body, so they can run concurrently. Below 9 bodies the loop stays on one thread (an idle
-/// OpenMP worker spin-waiting between substeps would only steal the main thread's core).
+/// OpenMP worker spin-waiting between substeps would only steal the main thread's core). Chunks of 16 bodies are
+/// handed out as threads free up: with the temporal level of detail a body costs ≈ 40 µs at an exact evaluation and
+/// a few µs when predicted, so equal static halves left one thread waiting (measured at 1,000 boats: 1.64× from the
+/// second thread with schedule(static), 1.88× with dynamic chunks of 16).
 class ParallelBuoyancy : public btActionInterface {
 public:
     std::vector<btBuoyancyAction*> actions;
@@ -40,7 +43,7 @@ public:
         if (!actions.empty()) actions[0]->updateAction(world, dt);
         const int n = int(actions.size());
 #ifdef BUOYANCY_BENCH_OPENMP
-#pragma omp parallel for schedule(static) if (n > 8)
+#pragma omp parallel for schedule(dynamic, 16) if (n > 8)
 #endif
         for (int i = 1; i < n; ++i) actions[i]->updateAction(world, dt);
         seconds += std::chrono::duration<double>(Clock::now() - t0).count();

@@ -23,8 +23,8 @@ namespace buoyancy::bench {
 struct TemporalLodOptions {
     /// (hydrostaticsInterval, hydrostaticsReuseTolerance) pairs; interval 0 is the automatic default, tolerance 0 the
     /// library's default tolerance.
-    std::vector<std::pair<int, double>> configurations{{1, 0.0}, {0, 0.0}, {4, 0.0}, {3, 0.002}, {4, 0.002},
-                                                       {6, 0.002}, {8, 0.002}};
+    std::vector<std::pair<int, double>> configurations{{1, 0.0}, {0, 0.0}, {4, 0.0}, {4, 0.002}, {8, 0.002},
+                                                       {12, 0.002}, {16, 0.002}};
     int bodies = 5;              ///< boats, 17 m apart, varied headings
     double settleSeconds = 2.0;  ///< simulated before errors are taken, s
     double seconds = 10.0;       ///< simulated while errors are taken, s

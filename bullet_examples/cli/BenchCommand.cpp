@@ -99,7 +99,7 @@ int runBench(const BenchOptions& o) {
         scale = runScaling(boat, "boat-x4", so, log);
         // P3 with a longer temporal level of detail than the default's (hydrostaticsInterval; its error is in
         // temporal_lod.csv): what real time costs in accuracy.
-        for (int k : {4, 6, 8}) {
+        for (int k : {8, 12, 16}) {
             ScalingOptions tk = so;
             tk.bodies = {o.quick ? 10 : 1000};
             tk.threads = o.quick ? std::vector<int>{1} : std::vector<int>{1, 2};

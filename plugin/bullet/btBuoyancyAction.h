@@ -126,10 +126,13 @@ private:
     /// ρ g V, m; the pose and velocity checks scale with it.
     double reuseLength(double waterlineArea) const;
     /// Temporal level of detail: the velocity deviation (btHydrostaticsHistory::velocityDeviation) up to which the
-    /// extrapolated drag is used, m/s.
-    double allowedVelocityDeviation(double waterlineArea) const;
+    /// extrapolated drag is used, m/s. relativeSpeed: |v − u_water| + radius |ω|, m/s.
+    double allowedVelocityDeviation(double waterlineArea, double relativeSpeed) const;
     /// Temporal level of detail: the pose deviation up to which the extrapolated hydrostatics are used, m.
     double allowedPoseDeviation(double waterlineArea) const;
+    /// Temporal level of detail: move an extrapolated pressure force, torque and volume from the extrapolated pose to
+    /// the actual one (COM `com`, m; `rotation` body → world): btHydrostaticStiffnessCorrection.
+    void correctPose(btHydrostaticsSnapshot& predicted, const Eigen::Vector3d& com, const Eigen::Matrix3d& rotation) const;
     /// (Re)select the shared drag clusters for the current settings and size the drag workspace.
     void selectDragClusters();
     /// Whole body below the lowest water point of flat water: the closed form from the dry mass properties.
@@ -151,11 +154,20 @@ private:
     bool m_needsPrime = true;
     /// @name Temporal level of detail (settings.hydrostaticsInterval)
     ///@{
-    btHydrostaticsHistory m_history;   ///< the last three exact evaluations at this body's evaluation substeps
+    btHydrostaticsHistory m_history;   ///< the last exact evaluations at this body's evaluation substeps
     int m_reuseCooldown = 0;           ///< evaluation substeps left before predicting again (a check failed)
     std::uint64_t m_phase = 0;         ///< the body evaluates exactly when (substep + m_phase) % interval == 0
-    int m_interval = 1;                ///< this substep's interval (settings.hydrostaticsInterval resolved)
+    int m_interval = 1;                ///< this substep's interval (m_adaptedInterval)
+    /// This body's interval: settings.hydrostaticsInterval resolved, halved after repeated misses of the check
+    /// and doubled back after 64 passes (recordHydrostatics); 0 until the first substep.
+    int m_adaptedInterval = 0;
+    std::uint8_t m_checkMisses = 0;    ///< the last eight checks, one bit per miss (newest lowest)
+    int m_checkPasses = 0;             ///< checks passed in a row at a halved interval
+    double m_passingErrorSum = 0;      ///< the sum of those checks' errors, fraction of ρ g V
     double m_tolerance = 1e-4;         ///< this substep's prediction tolerance (btBuoyancyResolveReuseTolerance)
+    /// Slope scale of the water over the body at the last exact evaluation (0 flat, WaterPatch::slopeBound on a
+    /// patch, 1 otherwise): weighs a horizontal drift in the pose check (btHydrostaticsHistory::poseDeviation).
+    double m_lastWaterSlope = 1.0;
     Eigen::Vector3d m_lastMeanWaterVelocity = Eigen::Vector3d::Zero(); ///< of the last computed drag, m/s
     ///@}
     // Workspace sized once (no allocation per substep).

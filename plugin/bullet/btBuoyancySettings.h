@@ -81,32 +81,33 @@ struct btBuoyancySettings {
     /// the drag clusters) is not built: those points are then queried exactly (cheaper, and exact).
     double waterPatchNodesPerWavelength = 16.0;
     /// Temporal level of detail (issue 9; btHydrostaticsHistory): evaluate the hydrostatics and drag exactly
-    /// every K-th substep and predict them in between by extrapolating the last three exact evaluations
-    /// quadratically in time, the heave force corrected for the body's actual height (the waterline's stiffness
-    /// ρ g A_waterline: the linear part of the restoring force follows the actual pose, so a bobbing body keeps its
-    /// energy). A body predicts only while its pose and velocity stay within
-    /// hydrostaticsReuseTolerance of the ones extrapolated the same way (a contact or a teleport makes it
-    /// evaluate exactly), while its heave is slow against the interval (ω K dt ≤ 0.3, ω² = ρ g A_waterline /
-    /// m_eff), and while the last check of the predictor against an exact evaluation passed. Bodies of one world
-    /// take turns (staggered by registration order), so the cost per substep stays even; results are
-    /// deterministic. getLastResult().predicted says which substeps were predicted. Ignored (exact every
+    /// every K-th substep and predict them in between by extrapolating the last four exact evaluations in time
+    /// (a cubic), moved to the body's actual pose through the linear hydrostatic stiffness (heave through the
+    /// waterline area; roll and pitch through the waterplane's moments, which the exact-mesh methods compute:
+    /// btHydrostaticStiffnessCorrection), so that only what the waves drive is extrapolated and a bobbing or rolling
+    /// body keeps its energy. A body predicts only while its pose and velocity stay within hydrostaticsReuseTolerance
+    /// of the ones extrapolated the same way (a contact or a teleport makes it evaluate exactly), while its submerged
+    /// volume is not about to saturate (a wave overrunning it), while its heave is slow against the interval
+    /// (ω K dt ≤ 0.3, ω² = ρ g A_waterline / m_eff), and while the last check of the predictor against an exact
+    /// evaluation passed. Three misses in four checks halve the body's own interval (down to 2); passes double it
+    /// back. Bodies of one world take turns (staggered by registration order), so the cost per substep stays even;
+    /// results are deterministic. getLastResult().predicted says which substeps were predicted. Ignored (exact every
     /// substep) for deformable bodies and on a device backend.
-    /// 0 (default) = automatic: an exact evaluation at least every 1/60 s (btBuoyancyAutomaticInterval: every
-    /// substep up to 60 substeps/s, every 2nd at 120/s, every 4th at 240/s), longer when errorBudget allows it
-    /// (btBuoyancyEvaluationPeriod: up to 1/30 s, every 8th substep at 240/s). 1 = exact every substep. 2..16:
-    /// that K. Measured on the benchmark's 3,400-triangle boat in its 4-wave sea at 240 substeps/s against exact
-    /// wave queries (docs/benchmarks/temporal_lod.csv): the default predicts ≈ 2/3 of the substeps and leaves the
-    /// force error about where exact evaluation has it (the wave patch's); with the tolerance at 0.2 %, K = 6
-    /// predicts ≈ 83 % at a worst force error of 0.2 % of ρ g V. Energy of an undamped bobbing body: see
-    /// temporal_lod.csv (a wall-sided box keeps it as exact evaluation does; without the heave correction it
-    /// gained 3 % a minute at 1/60 s).
+    /// 0 (default) = automatic: an exact evaluation at least every 1/30 s (btBuoyancyAutomaticInterval: every
+    /// substep up to 30 substeps/s, every 2nd at 60/s, every 4th at 120/s, every 8th at 240/s), longer when
+    /// errorBudget allows it (btBuoyancyEvaluationPeriod: up to 1/15 s). 1 = exact every substep. 2..16: that K.
+    /// Measured on the benchmark's 3,400-triangle boat in its 4-wave sea at 240 substeps/s against exact wave queries
+    /// (docs/benchmarks/temporal_lod.csv): the default predicts ≈ 84 % of the substeps and leaves the force error's
+    /// mean and 99th percentile where exact evaluation has them (the wave patch's). Energy: an undamped bobbing box
+    /// and sphere and a rolling box keep theirs within 0.14 % a minute (tests/bullet/test_temporal_lod.cpp,
+    /// test_dynamics.cpp).
     int hydrostaticsInterval = 0;
     /// Largest prediction error accepted by hydrostaticsInterval's checks, as a fraction of the body's full
     /// buoyancy ρ g V (force; a force error of x is a submerged-volume error of x·V) and of ρ g V × its bounding
-    /// diameter (torque); the pose check allows a drift of this fraction × V / A_waterline (the draft change that
-    /// would change the force by this fraction). A failed check makes the body evaluate exactly for the next three
-    /// intervals. Default 1e-4 (0.01 %: issue 2's accuracy for the submerged volume); with an errorBudget and an
-    /// automatic interval the tolerance used is at least errorBudget / 2 (btBuoyancyResolveReuseTolerance).
+    /// diameter (torque); the pose check allows the draft change that would change the force by this fraction
+    /// (btHydrostaticsHistory::poseDeviation, correctedPoseDeviation). A failed check makes the body evaluate exactly
+    /// for the next interval. Default 1e-4 (0.01 %: issue 2's accuracy for the submerged volume); with an errorBudget
+    /// and an automatic interval the tolerance used is at least errorBudget / 2 (btBuoyancyResolveReuseTolerance).
     /// Finite, > 0, ≤ 1.
     double hydrostaticsReuseTolerance = 1e-4;
 
@@ -124,16 +125,16 @@ struct btBuoyancySettings {
 };
 
 /// The interval hydrostaticsInterval = 0 stands for at a substep of dt seconds: the largest K ≤ 16 with
-/// K·dt ≤ periodSeconds (at least 1). The default period is the library's: an exact evaluation every 1/60 s.
-int btBuoyancyAutomaticInterval(double dt, double periodSeconds = 1.0 / 60.0);
+/// K·dt ≤ periodSeconds (at least 1). The default period is the library's: an exact evaluation every 1/30 s.
+int btBuoyancyAutomaticInterval(double dt, double periodSeconds = 1.0 / 30.0);
 
 /// Temporal level of detail with hydrostaticsInterval = 0: the longest time between exact evaluations, s.
-/// Without an error budget 1/60 s. With settings.errorBudget > 0, the longest period of the measured temporal
+/// Without an error budget 1/30 s. With settings.errorBudget > 0, the longest period of the measured temporal
 /// error model whose worst force error × kLodSafetyFactor (2) fits the budget (a force error of x % of ρ g V is a
-/// submerged-volume error of x % of V), never below 1/60 s. The model (docs/benchmarks/temporal_lod.csv: the
-/// 3,400-triangle boat in the P3 sea at 240 substeps/s; other bodies and seas can differ): 12.5 ms 0.025 %,
-/// 16.7 ms 0.060 %, 25 ms 0.21 %, 33 ms 0.27 %.
-/// @param[out] modelErrorPct  optional: the model's worst force error at that period, % of ρ g V
+/// submerged-volume error of x % of V), never below 1/30 s. The model (docs/benchmarks/temporal_lod.csv: the
+/// 3,400-triangle boat in the P3 sea at 240 substeps/s, tolerance 0.2 %; other bodies and seas can differ):
+/// 33 ms 0.21 %, 50 ms 0.39 %, 67 ms 0.68 %.
+/// @param[out] modelErrorPct  optional: the model's worst force error at that period, % of ρ g V (0 at the default)
 double btBuoyancyEvaluationPeriod(const btBuoyancySettings& settings, double* modelErrorPct = nullptr);
 
 /// settings.hydrostaticsInterval resolved at a substep of dt seconds: itself when > 0, else

@@ -4,15 +4,15 @@
 #include <cmath>
 
 namespace {
-void put(std::array<double, 36>& x, int at, const Eigen::Vector3d& v) {
+void put(std::array<double, btHydrostaticsHistory::kValues>& x, int at, const Eigen::Vector3d& v) {
     for (int i = 0; i < 3; ++i) x[std::size_t(at + i)] = v[i];
 }
-Eigen::Vector3d get(const std::array<double, 36>& x, int at) {
+Eigen::Vector3d get(const std::array<double, btHydrostaticsHistory::kValues>& x, int at) {
     return Eigen::Vector3d(x[std::size_t(at)], x[std::size_t(at + 1)], x[std::size_t(at + 2)]);
 }
 }  // namespace
 
-std::array<double, 36> btHydrostaticsHistory::pack(const btHydrostaticsSnapshot& s) {
+std::array<double, btHydrostaticsHistory::kValues> btHydrostaticsHistory::pack(const btHydrostaticsSnapshot& s) {
     std::array<double, kValues> x{};
     const buoyancy::HydrostaticsResult& h = s.hydrostatics;
     put(x, 0, h.force);
@@ -28,6 +28,12 @@ std::array<double, 36> btHydrostaticsHistory::pack(const btHydrostaticsSnapshot&
     put(x, 27, s.dragTorque);
     put(x, 30, s.linearVelocity);
     put(x, 33, s.angularVelocity);
+    const buoyancy::WaterplaneMoments& w = h.waterplane;
+    x[36] = w.x;
+    x[37] = w.z;
+    x[38] = w.xx;
+    x[39] = w.xz;
+    x[40] = w.zz;
     return x;
 }
 
@@ -48,30 +54,39 @@ btHydrostaticsSnapshot btHydrostaticsHistory::unpack(const std::array<double, kV
     s.dragTorque = get(x, 27);
     s.linearVelocity = get(x, 30);
     s.angularVelocity = get(x, 33);
+    buoyancy::WaterplaneMoments& w = h.waterplane;
+    w.x = x[36];
+    w.z = x[37];
+    w.xx = std::max(x[38], 0.0);
+    w.xz = x[39];
+    w.zz = std::max(x[40], 0.0);
     return s;
 }
 
 void btHydrostaticsHistory::push(std::uint64_t substep, double time, const btHydrostaticsSnapshot& snapshot) {
-    m_records[2] = m_records[1];
-    m_records[1] = m_records[0];
+    for (int i = kRecords - 1; i > 0; --i) m_records[std::size_t(i)] = m_records[std::size_t(i - 1)];
     m_records[0].substep = substep;
     m_records[0].time = time;
     m_records[0].x = pack(snapshot);
-    if (m_count < 3) ++m_count;
+    m_records[0].waterplane = snapshot.hydrostatics.waterplane.valid;
+    if (m_count < kRecords) ++m_count;
 }
 
 bool btHydrostaticsHistory::spaced(std::uint64_t substep, double time, int interval, std::uint64_t maxAhead) const {
-    if (m_count < 3 || interval < 2) return false;
+    if (m_count < kRecords || interval < 2) return false;
     const std::uint64_t k = std::uint64_t(interval);
-    const Record &r0 = m_records[0], &r1 = m_records[1], &r2 = m_records[2];
-    if (r0.substep - r1.substep != k || r1.substep - r2.substep != k || substep <= r0.substep ||
-        substep - r0.substep > maxAhead)
-        return false;
+    const Record& newest = m_records[0];
+    if (substep <= newest.substep || substep - newest.substep > maxAhead) return false;
     // Equal substep lengths: the records equally spaced in time, and `time` where that spacing puts it.
-    const double span = r0.time - r1.time;
+    const double span = newest.time - m_records[1].time;
     const double slack = 1e-6 * std::abs(span);
-    const double expected = r0.time + span * double(substep - r0.substep) / double(k);
-    return span > 0 && std::abs((r1.time - r2.time) - span) <= slack && std::abs(time - expected) <= slack;
+    if (!(span > 0)) return false;
+    for (int i = 0; i + 1 < kRecords; ++i) {
+        const Record &a = m_records[std::size_t(i)], &b = m_records[std::size_t(i + 1)];
+        if (a.substep - b.substep != k || std::abs((a.time - b.time) - span) > slack) return false;
+    }
+    const double expected = newest.time + span * double(substep - newest.substep) / double(k);
+    return std::abs(time - expected) <= slack;
 }
 
 bool btHydrostaticsHistory::canPredict(std::uint64_t substep, double time, int interval) const {
@@ -84,20 +99,34 @@ bool btHydrostaticsHistory::canCheck(std::uint64_t substep, double time, int int
 }
 
 btHydrostaticsSnapshot btHydrostaticsHistory::extrapolate(std::uint64_t substep, int interval) const {
-    // Newton's backward-difference formula on three equally spaced samples (see the header).
+    // Newton's backward-difference formula on four equally spaced samples (see the header).
     const double a = double(substep - m_records[0].substep) / double(interval);
-    const double c1 = a, c2 = 0.5 * a * (a + 1.0);
+    const double c1 = a, c2 = 0.5 * a * (a + 1.0), c3 = c2 * (a + 2.0) / 3.0;
     std::array<double, kValues> y;
     for (std::size_t i = 0; i < y.size(); ++i) {
-        const double x0 = m_records[0].x[i], x1 = m_records[1].x[i], x2 = m_records[2].x[i];
-        y[i] = x0 + c1 * (x0 - x1) + c2 * (x0 - 2.0 * x1 + x2);
+        const double x0 = m_records[0].x[i], x1 = m_records[1].x[i], x2 = m_records[2].x[i], x3 = m_records[3].x[i];
+        y[i] = x0 + c1 * (x0 - x1) + c2 * (x0 - 2.0 * x1 + x2) + c3 * (x0 - 3.0 * (x1 - x2) - x3);
     }
-    return unpack(y);
+    btHydrostaticsSnapshot s = unpack(y);
+    s.hydrostatics.waterplane.valid = true;
+    for (const Record& r : m_records) s.hydrostatics.waterplane.valid = s.hydrostatics.waterplane.valid && r.waterplane;
+    return s;
 }
 
 double btHydrostaticsHistory::poseDeviation(const Eigen::Vector3d& com, const Eigen::Matrix3d& rotation,
-                                            const btHydrostaticsSnapshot& predicted, double radius) {
-    return (com - predicted.com).norm() + radius * (rotation - predicted.rotation).norm() / std::sqrt(2.0);
+                                            const btHydrostaticsSnapshot& predicted, double radius, double waterSlope) {
+    const Eigen::Vector3d d = com - predicted.com;
+    return std::abs(d.y()) + waterSlope * std::hypot(d.x(), d.z()) +
+           radius * (rotation - predicted.rotation).norm() / std::sqrt(2.0);
+}
+
+double btHydrostaticsHistory::correctedPoseDeviation(const Eigen::Vector3d& com, const Eigen::Matrix3d& rotation,
+                                                     const btHydrostaticsSnapshot& predicted, double radius,
+                                                     double waterSlope) {
+    const Eigen::Vector3d d = com - predicted.com;
+    const double turn = radius * (rotation - predicted.rotation).norm() / std::sqrt(2.0);  // radius × angle
+    const double rise = std::abs(d.y()) + turn;
+    return waterSlope * (std::hypot(d.x(), d.z()) + turn) + (radius > 0 ? 8.0 * rise * rise / radius : rise);
 }
 
 double btHydrostaticsHistory::velocityDeviation(const Eigen::Vector3d& linearVelocity,
@@ -105,4 +134,26 @@ double btHydrostaticsHistory::velocityDeviation(const Eigen::Vector3d& linearVel
                                                 const btHydrostaticsSnapshot& predicted, double radius) {
     return (linearVelocity - predicted.linearVelocity).norm() +
            radius * (angularVelocity - predicted.angularVelocity).norm();
+}
+
+void btHydrostaticStiffnessCorrection(btHydrostaticsSnapshot& predicted, const Eigen::Vector3d& com,
+                                      const Eigen::Matrix3d& rotation, double rhoG) {
+    // See the header. The linear part restores the pose; what the waves drive is left to the extrapolation
+    // (F = −C δ + G(t) predicted as −C δ + E[G]): extrapolating all of F leads a bobbing body's motion and pumps
+    // energy into it (measured: temporal_lod.csv, energy column).
+    buoyancy::HydrostaticsResult& h = predicted.hydrostatics;
+    const double dy = com.y() - predicted.com.y();
+    double dVolume = -h.waterline_area * dy;  // m³
+    if (h.waterplane.valid) {
+        const Eigen::Matrix3d M = rotation * predicted.rotation.transpose();  // ≈ I + [φ]×
+        const Eigen::Vector3d phi(0.5 * (M(2, 1) - M(1, 2)), 0.5 * (M(0, 2) - M(2, 0)), 0.5 * (M(1, 0) - M(0, 1)));
+        const buoyancy::WaterplaneMoments& w = h.waterplane;
+        dVolume -= phi.z() * w.x - phi.x() * w.z;
+        Eigen::Vector3d dTorque(rhoG * (w.z * dy + phi.z() * w.xz - phi.x() * w.zz), 0.0,
+                                -rhoG * (w.x * dy + phi.z() * w.xx - phi.x() * w.xz));
+        if (h.submerged_volume > 0) dTorque += phi.cross(h.centre_of_buoyancy - predicted.com).cross(h.force);
+        h.torque += dTorque;
+    }
+    h.force.y() += rhoG * dVolume;
+    h.submerged_volume = std::max(h.submerged_volume + dVolume, 0.0);
 }

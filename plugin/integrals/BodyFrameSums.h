@@ -36,6 +36,7 @@ struct NodeSums {
     Eigen::Vector3d F = Eigen::Vector3d::Zero();  ///< Σ ∫ D n, body frame
     Eigen::Vector3d T = Eigen::Vector3d::Zero();  ///< Σ ∫ D (q − q_r) × n, body frame
     Eigen::Vector3d Q = Eigen::Vector3d::Zero();  ///< Σ ∫ (q − q_r) D n_y, body frame
+    WaterlineSums waterline;  ///< the waterline's segments, world horizontal axes (WetTriangleIntegrals.h)
 };
 
 /// A corner of a wetted piece in the body frame: position relative to the reference point q_r, s (m), and
@@ -66,11 +67,13 @@ inline void addBodyTriangle(const BodyCorner& a, const BodyCorner& b, const Body
 }
 
 /// Clip the triangle (in[0], in[1], in[2]) against D ≤ 0 (Sutherland–Hodgman, D linear along its edges) and add the
-/// wetted part (addBodyTriangle).
-inline void addClippedBodyTriangle(const BodyCorner in[3], const Eigen::Vector3d& u, NodeSums& acc) {
+/// wetted part (addBodyTriangle), and its edges on the waterline to acc.waterline (X, Z: the world x and z axes in the
+/// body frame, the rows of R, so that X·s and Z·s are the world horizontal coordinates relative to the reference).
+inline void addClippedBodyTriangle(const BodyCorner in[3], const Eigen::Vector3d& u, const Eigen::Vector3d& X,
+                                   const Eigen::Vector3d& Z, NodeSums& acc) {
     const double d0 = in[0].D, d1 = in[1].D, d2 = in[2].D;
     if (d0 >= 0 && d1 >= 0 && d2 >= 0) return;  // dry (or touching)
-    if (d0 <= 0 && d1 <= 0 && d2 <= 0) {
+    if (d0 < 0 && d1 < 0 && d2 < 0) {
         addBodyTriangle(in[0], in[1], in[2], u, acc);
         return;
     }
@@ -86,6 +89,11 @@ inline void addClippedBodyTriangle(const BodyCorner in[3], const Eigen::Vector3d
         }
     }
     for (int k = 1; k + 1 < n; ++k) addBodyTriangle(poly[0], poly[k], poly[k + 1], u, acc);
+    for (int k = 0; k < n; ++k) {  // the piece's edges on the waterline (both ends at D = 0), in its order
+        const BodyCorner& e = poly[k];
+        const BodyCorner& m = poly[(k + 1) % n];
+        if (e.D == 0 && m.D == 0) acc.waterline.add(X.dot(e.s), Z.dot(e.s), X.dot(m.s), Z.dot(m.s));
+    }
 }
 
 /// The body-frame sums as world-frame WetIntegrals relative to the reference point (R: body → world rotation):
@@ -99,6 +107,7 @@ inline WetIntegrals toWetIntegrals(const NodeSums& acc, const Eigen::Matrix3d& R
     I.first.y() -= 0.5 * acc.D2;
     I.Ay = acc.Ay;
     I.area = acc.area;
+    I.waterline = acc.waterline;
     return I;
 }
 

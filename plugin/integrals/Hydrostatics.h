@@ -18,6 +18,21 @@ class WaterPatch;
 struct MeshMomentTree;
 struct VertexShares;
 
+/// Area moments of the waterplane: the region the waterline encloses, projected on the horizontal plane, about a
+/// reference point r (x' = x − r_x, z' = z − r_z, world axes). With the waterline area they give the linear
+/// hydrostatic stiffness of a floating body in heave, roll and pitch (DESIGN-NOTES 2.7; e.g. Faltinsen, "Sea Loads
+/// on Ships and Offshore Structures", 1990, ch. 2: C₃₃ = ρ g A, C₃₅ = −ρ g ∫x dA, C₅₅ = ρ g ∫x² dA + …).
+struct WaterplaneMoments {
+    double x = 0;    ///< ∫ x' dA, m³
+    double z = 0;    ///< ∫ z' dA, m³
+    double xx = 0;   ///< ∫ x'² dA, m⁴
+    double xz = 0;   ///< ∫ x' z' dA, m⁴
+    double zz = 0;   ///< ∫ z'² dA, m⁴
+    /// True when computed (the exact-mesh methods and the closed forms, from the waterline's segments, when the
+    /// loop they form encloses the waterline area); false for the sampled methods and the device backends.
+    bool valid = false;
+};
+
 /// Result of one hydrostatic evaluation, world frame.
 struct HydrostaticsResult {
     double submerged_volume = 0;                          ///< m³
@@ -26,6 +41,7 @@ struct HydrostaticsResult {
     Eigen::Vector3d torque = Eigen::Vector3d::Zero();     ///< about the reference point given, N·m
     double waterline_area = 0;                            ///< −Σ_wet A^y for samples; cap area for clipping, m²
     double wetted_area = 0;                               ///< wetted surface area, m²
+    WaterplaneMoments waterplane;                         ///< about the reference point given
 };
 
 /// Per-body scratch arrays (world positions, area vectors, water heights), sized once and reused every

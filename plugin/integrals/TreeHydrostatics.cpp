@@ -193,7 +193,9 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
         // Entirely below: closed form, if the node is small enough for the expansion (ρ ≤ maxRadius: the neglected
         // third-order part of the water height over the node grows like ρ³; measured in
         // tests/integrals/TreeHydrostaticsTest.cpp: the tree adds ≤ 2e-4 of V to the patch's own error).
-        if (c0 + spread <= 0 && rho <= maxRadius) {
+        // (Strictly below: a node touching the water from below is opened, so that the waterline along it reaches the
+        // waterplane moments through its clipped triangles.)
+        if (c0 + spread < 0 && rho <= maxRadius) {
             const MeshMomentNode& n = tree.nodes[std::size_t(index)];
             if (flat) {  // G = H = 0: D = u·q + t_y − level exactly, no expansion to move
                 addWetNode<false>(n, u, n.centre - qr, u.dot(n.centre) + flatOffset, u, nullptr, acc);
@@ -246,7 +248,7 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
             }
             if (in[0].D >= 0 && in[1].D >= 0 && in[2].D >= 0) continue;  // dry (or touching)
             for (int j = 0; j < 3; ++j) in[j].s = corner[j] - qr;
-            addClippedBodyTriangle(in, u, acc);
+            addClippedBodyTriangle(in, u, X, Z, acc);
         }
     }
 

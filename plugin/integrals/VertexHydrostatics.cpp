@@ -6,8 +6,8 @@
 ///     the patch, and only for the vertices that can be under water: y_v ≤ the highest value the patch can take);
 ///  2. each vertex with D_v ≤ 0: the shares D_v B_v, D_v T_v, D_v M_v, D_v² B_v, B_v, a_v summed (several vertices
 ///     per instruction: SSE2, AVX2 or AVX-512 chosen at run time, VertexSharesKernel.h);
-///  3. each triangle: all corners under water → its ∫ D² n_y cross term (A_t (Σ D_i)²); corners on both sides →
-///     listed;
+///  3. each triangle: all corners under water → its ∫ D² n_y cross term (A_t (Σ D_i)²); corners on both sides (or an
+///     edge exactly on the water) → listed;
 ///  4. the straddling triangles listed in pass 3: the shares their wet corners added are taken back and they are
 ///     clipped exactly (BodyFrameSums.h).
 /// Triangles entirely above the water cost one test each.
@@ -65,6 +65,7 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
     const Eigen::Vector3d t = pose.translation();
     const Eigen::Vector3d& r = torqueReference;
     const Eigen::Vector3d u = R.row(1).transpose();  // world up in the body frame
+    const Eigen::Vector3d X = R.row(0).transpose(), Z = R.row(2).transpose();  // world x and z, body frame
     const Eigen::Vector3d qr = R.transpose() * (r - t);
     const double r00 = R(0, 0), r01 = R(0, 1), r02 = R(0, 2), r10 = R(1, 0), r11 = R(1, 1), r12 = R(1, 2);
     const double r20 = R(2, 0), r21 = R(2, 1), r22 = R(2, 2);
@@ -130,7 +131,10 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
     for (std::size_t tr = 0; tr < nt; ++tr) {
         const double d0 = D[c0[tr]], d1 = D[c1[tr]], d2 = D[c2[tr]];
         const int wet = int(d0 <= 0) + int(d1 <= 0) + int(d2 <= 0);
-        if (wet == 3) {
+        // Wet with an edge exactly on the water (two corners at D = 0, the third below): clipped below like the
+        // straddling ones, so that the edge reaches the waterplane moments (BodyFrameSums.h); the sums are the same.
+        const int onWater = int(d0 == 0) + int(d1 == 0) + int(d2 == 0);
+        if (wet == 3 && onWater != 2) {
             const double s = d0 + d1 + d2, s2 = s * s;
             Sx += s2 * ax[tr];
             Sy += s2 * ay[tr];
@@ -190,7 +194,7 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
         By -= wet * A.y() / 3.0;
         Bz -= wet * A.z() / 3.0;
         area -= wet * shares.absArea[tr] / 3.0;
-        addClippedBodyTriangle(in, u, clipped);
+        addClippedBodyTriangle(in, u, X, Z, clipped);
     }
 
     // Assembly: the shares of the entirely wet triangles, moved to the reference point q_r, plus the clipped pieces.

@@ -43,6 +43,7 @@ void WaterPatch::build(const btWaterSurface& water, double cx, double cz, double
         m_coef.resize(16 * cells);
         m_epoch = 0;
     }
+    m_allCellsEpoch = 0;  // (epochs start at 1) none of the new build's cells computed yet
     if (++m_epoch == 0) {
         std::fill(m_cellStamp.begin(), m_cellStamp.end(), 0u);
         m_epoch = 1;
@@ -70,6 +71,17 @@ void WaterPatch::build(const btWaterSurface& water, double cx, double cz, double
         }
     m_curvature = 1.25 * (std::max(dxx, dzz) + dxz) * m_invH * m_invH;
     if (!std::isfinite(m_curvature)) m_finite = false;
+    // Slope scale (see slopeBound): the largest first difference of the nodes along x and along z over h (the mean
+    // slope over a cell edge), as a gradient's length, plus half a cell of the curvature scale (how far the slope
+    // moves within the cell).
+    double dx = 0, dz = 0;
+    for (int j = 0; j < nodes; ++j)
+        for (int i = 0; i < nodes; ++i) {
+            if (i + 1 < nodes) dx = std::max(dx, std::abs(F(i + 1, j) - F(i, j)));
+            if (j + 1 < nodes) dz = std::max(dz, std::abs(F(i, j + 1) - F(i, j)));
+        }
+    m_slope = std::hypot(dx, dz) * m_invH + 0.5 * m_curvature * m_h;
+    if (!std::isfinite(m_slope)) m_finite = false;
     // Third-derivative scale (see thirdDerivativeBound): per 4×4 block of nodes, the third differences along x, z and
     // the two mixed ones (Δxxz over the block's first two z rows, Δxzz its first two x columns), combined as the
     // worst direction's D³f[d,d,d] ≤ |f_xxx| + 3|f_xxz| + 3|f_xzz| + |f_zzz|.
@@ -89,6 +101,22 @@ void WaterPatch::build(const btWaterSurface& water, double cx, double cz, double
 }
 
 
+void WaterPatch::computeCell(std::size_t c, int i, int j) const {
+    // Power-basis coefficients of the cell's bicubic: C = M F Mᵀ, F the 4×4 nodes around it (a along x, b along z),
+    // M the Catmull-Rom basis (w_a(t) = Σ_p M[p][a] tᵖ): f = Σ_pq C[p][q] tu^p tv^q.
+    static constexpr double M[4][4] = {{0, 1, 0, 0}, {-0.5, 0, 0.5, 0}, {1, -2.5, 2, -0.5}, {-0.5, 1.5, -1.5, 0.5}};
+    double* C = m_coef.data() + 16 * c;
+    const double* F = m_f.data() + std::size_t(j - 1) * m_m + (i - 1);  // F[b * M + a]
+    double FM[4][4];  // FM[a][q] = Σ_b F[a][b] M[q][b]
+    for (int a = 0; a < 4; ++a)
+        for (int q = 0; q < 4; ++q)
+            FM[a][q] = F[a] * M[q][0] + F[m_m + a] * M[q][1] + F[2 * m_m + a] * M[q][2] + F[3 * m_m + a] * M[q][3];
+    for (int p = 0; p < 4; ++p)
+        for (int q = 0; q < 4; ++q)
+            C[4 * p + q] = M[p][0] * FM[0][q] + M[p][1] * FM[1][q] + M[p][2] * FM[2][q] + M[p][3] * FM[3][q];
+    m_cellStamp[c] = m_epoch;
+}
+
 const double* WaterPatch::cell(double x, double z, double& tu, double& tv) const {
     const double u = (x - m_x0) * m_invH, v = (z - m_z0) * m_invH;
     // Cells 1..M−3 have both neighbours; clamp outside points to the border cells.
@@ -98,22 +126,8 @@ const double* WaterPatch::cell(double x, double z, double& tu, double& tv) const
     tu = uc - i;
     tv = vc - j;
     const std::size_t c = std::size_t(j - 1) * std::size_t(m_m - 3) + std::size_t(i - 1);
-    double* C = m_coef.data() + 16 * c;
-    if (m_cellStamp[c] != m_epoch) {
-        // Power-basis coefficients of the cell's bicubic: C = M F Mᵀ, F the 4×4 nodes around it (a along x, b along
-        // z), M the Catmull-Rom basis (w_a(t) = Σ_p M[p][a] tᵖ): f = Σ_pq C[p][q] tu^p tv^q.
-        static constexpr double M[4][4] = {{0, 1, 0, 0}, {-0.5, 0, 0.5, 0}, {1, -2.5, 2, -0.5}, {-0.5, 1.5, -1.5, 0.5}};
-        const double* F = m_f.data() + std::size_t(j - 1) * m_m + (i - 1);  // F[b * M + a]
-        double FM[4][4];  // FM[a][q] = Σ_b F[a][b] M[q][b]
-        for (int a = 0; a < 4; ++a)
-            for (int q = 0; q < 4; ++q)
-                FM[a][q] = F[a] * M[q][0] + F[m_m + a] * M[q][1] + F[2 * m_m + a] * M[q][2] + F[3 * m_m + a] * M[q][3];
-        for (int p = 0; p < 4; ++p)
-            for (int q = 0; q < 4; ++q)
-                C[4 * p + q] = M[p][0] * FM[0][q] + M[p][1] * FM[1][q] + M[p][2] * FM[2][q] + M[p][3] * FM[3][q];
-        m_cellStamp[c] = m_epoch;
-    }
-    return C;
+    if (m_cellStamp[c] != m_epoch) computeCell(c, i, j);
+    return m_coef.data() + 16 * c;
 }
 
 void WaterPatch::taylor(double x, double z, double& f, double& fx, double& fz, double& fxx, double& fxz,
@@ -145,6 +159,35 @@ double WaterPatch::height(double x, double z) const {
 }
 
 void WaterPatch::heights(const double* x, const double* z, std::size_t n, double* outHeight) const {
+    // Many points: every cell's coefficients first (a body's vertices cover most of its patch), then one pass
+    // without the per-point stamp check, the index arithmetic of cell() inlined.
+    const int cellsPerRow = m_m - 3;
+    if (n >= std::size_t(cellsPerRow) * std::size_t(cellsPerRow)) {
+        if (m_allCellsEpoch != m_epoch) {
+            for (int j = 1; j <= cellsPerRow; ++j)
+                for (int i = 1; i <= cellsPerRow; ++i) {
+                    const std::size_t c = std::size_t(j - 1) * std::size_t(cellsPerRow) + std::size_t(i - 1);
+                    if (m_cellStamp[c] != m_epoch) computeCell(c, i, j);
+                }
+            m_allCellsEpoch = m_epoch;
+        }
+        const double* coef = m_coef.data();
+        const double lo = 1.0, hi = double(m_m - 2), x0 = m_x0, z0 = m_z0, invH = m_invH;
+        const int last = m_m - 3;
+        for (std::size_t k = 0; k < n; ++k) {
+            const double uc = std::min(std::max((x[k] - x0) * invH, lo), hi);
+            const double vc = std::min(std::max((z[k] - z0) * invH, lo), hi);
+            const int i = std::min(int(uc), last), j = std::min(int(vc), last);
+            const double tu = uc - i, tv = vc - j;
+            const double* C = coef + 16 * (std::size_t(j - 1) * std::size_t(cellsPerRow) + std::size_t(i - 1));
+            const double a0 = ((C[12] * tu + C[8]) * tu + C[4]) * tu + C[0];
+            const double a1 = ((C[13] * tu + C[9]) * tu + C[5]) * tu + C[1];
+            const double a2 = ((C[14] * tu + C[10]) * tu + C[6]) * tu + C[2];
+            const double a3 = ((C[15] * tu + C[11]) * tu + C[7]) * tu + C[3];
+            outHeight[k] = ((a3 * tv + a2) * tv + a1) * tv + a0;
+        }
+        return;
+    }
     for (std::size_t k = 0; k < n; ++k) outHeight[k] = height(x[k], z[k]);
 }
 

@@ -47,6 +47,11 @@ public:
     /// ≲ thirdDerivativeBound() |δ|³ / 6 (the moment tree's node criterion, DESIGN-NOTES 2.5). Not a strict bound either.
     double thirdDerivativeBound() const { return m_third; }
 
+    /// Scale of the interpolant's slope |∇f| over the patch, dimensionless: the largest node differences along x and
+    /// along z over h, combined as a gradient, plus ½ curvatureBound() h. Used by the temporal level of detail to
+    /// weigh a horizontal drift of the body (btHydrostaticsHistory::poseDeviation); not a strict bound.
+    double slopeBound() const { return m_slope; }
+
     /// Lowest and highest node height (the interpolant may overshoot by a few per cent of the node spread), m.
     double minNode() const { return m_min; }
     /// see minNode
@@ -62,17 +67,21 @@ private:
     /// The cell holding world (x, z) (clamped to the border cells), its local coordinates tu, tv ∈ [0, 1], and its 16
     /// power-basis coefficients C[4p + q] of tu^p tv^q, computed on first use after build().
     const double* cell(double x, double z, double& tu, double& tv) const;
+    /// Compute cell c's (column i, row j, 1-based node indices) 16 coefficients and stamp it.
+    void computeCell(std::size_t c, int i, int j) const;
 
     int m_m = 0;
     double m_x0 = 0, m_z0 = 0, m_h = 1, m_invH = 1;
     double m_min = 0, m_max = 0;
     double m_curvature = 0;
     double m_third = 0;
+    double m_slope = 0;
     bool m_finite = true;
     std::vector<double> m_qx, m_qz, m_f;
     mutable std::vector<double> m_coef;             ///< 16 coefficients per cell (cell())
     mutable std::vector<std::uint32_t> m_cellStamp; ///< build epoch each cell's coefficients belong to
     std::uint32_t m_epoch = 0;                      ///< incremented by build()
+    mutable std::uint32_t m_allCellsEpoch = 0;      ///< the build epoch whose cells heights() has all computed
 };
 
 }  // namespace buoyancy

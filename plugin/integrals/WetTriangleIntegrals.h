@@ -8,6 +8,7 @@
 #include "integrals/Hydrostatics.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,51 @@ struct PieceVertex {
     double f;
 };
 
+/// The waterline's segments summed into the waterplane's area moments (Green's theorem: each moment of the region a
+/// closed polygon encloses is a sum over its edges). A segment goes from E to N along the boundary of the wetted
+/// part of a triangle, counter-clockwise about its outward normal (wet side on the left), so the lid that closes the
+/// submerged volume is bounded by N → E, counter-clockwise seen from above; with c = z_N x_E − x_N z_E:
+///   A = ½ Σ c,  ∫x = ⅙ Σ (x_N + x_E) c,  ∫x² = 1/12 Σ (x_N² + x_N x_E + x_E²) c,
+///   ∫xz = 1/24 Σ (2 x_N z_N + x_N z_E + x_E z_N + 2 x_E z_E) c   (z alike),
+/// exact for the projected polygon whatever the origin (coordinates relative to the reference point here).
+struct WaterlineSums {
+    double area2 = 0, x6 = 0, z6 = 0, xx12 = 0, xz24 = 0, zz12 = 0;
+
+    /// Add the segment E → N (world horizontal coordinates relative to the reference point, m).
+    void add(double xe, double ze, double xn, double zn) {
+        const double c = zn * xe - xn * ze;
+        area2 += c;
+        x6 += (xn + xe) * c;
+        z6 += (zn + ze) * c;
+        xx12 += (xn * xn + xn * xe + xe * xe) * c;
+        zz12 += (zn * zn + zn * ze + ze * ze) * c;
+        xz24 += (2.0 * xn * zn + xn * ze + xe * zn + 2.0 * xe * ze) * c;
+    }
+    /// Add another set of sums.
+    void add(const WaterlineSums& o) {
+        area2 += o.area2;
+        x6 += o.x6;
+        z6 += o.z6;
+        xx12 += o.xx12;
+        xz24 += o.xz24;
+        zz12 += o.zz12;
+    }
+    /// The moments; valid when the segments' enclosed area matches the waterline area −∫_wet n_y (`waterlineArea`,
+    /// m²) to 1e-6 of the larger, or both are 0 (a segment lost to a corner exactly on the water breaks the loop).
+    WaterplaneMoments moments(double waterlineArea) const {
+        WaterplaneMoments m;
+        m.x = x6 / 6.0;
+        m.z = z6 / 6.0;
+        m.xx = xx12 / 12.0;
+        m.xz = xz24 / 24.0;
+        m.zz = zz12 / 12.0;
+        const double area = 0.5 * area2;
+        m.valid = std::isfinite(area) && std::isfinite(m.xx + m.xz + m.zz + m.x + m.z) &&
+                  std::abs(area - waterlineArea) <= 1e-6 * std::max(std::abs(area), std::abs(waterlineArea)) + 1e-12;
+        return m;
+    }
+};
+
 /// Running (plain double) integrals over wetted pieces, positions relative to a reference point r:
 /// V = ∫ (y − f) n_y, first = (∫ x'(y − f) n_y, ∫ (y'² − f'²)/2 n_y, ∫ z'(y − f) n_y),
 /// dA = ∫ (y − f) n (force / ρg), dpxA = ∫ (y − f) p' × n (torque / ρg), Ay = Σ A^y, area = wetted area.
@@ -30,6 +76,7 @@ struct WetIntegrals {
     Eigen::Vector3d dpxA = Eigen::Vector3d::Zero();    ///< m⁴
     double Ay = 0;                                     ///< m²
     double area = 0;                                   ///< m²
+    WaterlineSums waterline;                           ///< the waterline's segments (waterplane moments)
 
     /// Exact integrals over the flat triangle (a, b, c), wetted everywhere (y ≤ f), f linear over it.
     void addTriangle(const PieceVertex& a, const PieceVertex& b, const PieceVertex& c) {
@@ -68,24 +115,29 @@ struct WetIntegrals {
         double d[3];
         for (int k = 0; k < 3; ++k) d[k] = in[k].p.y() - in[k].f;
         if (d[0] >= 0 && d[1] >= 0 && d[2] >= 0) return;  // dry (or touching)
-        if (d[0] <= 0 && d[1] <= 0 && d[2] <= 0) {
-            addTriangle(in[0], in[1], in[2]);
-            return;
-        }
         PieceVertex poly[4];
+        bool onWater[4];  // the piece's corners on the waterline (D = 0): its edges between two are the waterline's
         int n = 0;
         for (int k = 0; k < 3; ++k) {
             const int k1 = (k + 1) % 3;
-            if (d[k] <= 0) poly[n++] = in[k];
+            if (d[k] <= 0) {
+                onWater[n] = d[k] == 0;
+                poly[n++] = in[k];
+            }
             if ((d[k] < 0 && d[k1] > 0) || (d[k] > 0 && d[k1] < 0)) {
                 const double u = d[k] / (d[k] - d[k1]);
                 PieceVertex x;
                 x.p = in[k].p + u * (in[k1].p - in[k].p);
                 x.f = in[k].f + u * (in[k1].f - in[k].f);
+                onWater[n] = true;
                 poly[n++] = x;
             }
         }
         for (int k = 1; k + 1 < n; ++k) addTriangle(poly[0], poly[k], poly[k + 1]);
+        for (int k = 0; k < n; ++k) {
+            const int k1 = (k + 1) % n;
+            if (onWater[k] && onWater[k1]) waterline.add(poly[k].p.x(), poly[k].p.z(), poly[k1].p.x(), poly[k1].p.z());
+        }
     }
 
     /// The result: volume, centre of buoyancy r + first / V, force ρg·dA, torque ρg·dpxA about r, waterline area
@@ -101,6 +153,7 @@ struct WetIntegrals {
         res.torque = rg * dpxA;
         res.waterline_area = -Ay;
         res.wetted_area = area;
+        res.waterplane = waterline.moments(res.waterline_area);
         if (!std::isfinite(res.submerged_volume) || !res.force.allFinite() || !res.torque.allFinite() ||
             !res.centre_of_buoyancy.allFinite())
             throw std::runtime_error(std::string(who) + ": non-finite result (non-finite pose, vertices or water heights)");

@@ -137,8 +137,8 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
         }
         CHECK(bodies == std::set<int>{1, 10, 100});
     }
-    {  // temporal_lod.csv: interval 1 never predicts, the default resolves to 4 at 240 substeps/s and predicts at most
-       // three substeps of four, every error finite and small
+    {  // temporal_lod.csv: interval 1 never predicts, the default resolves to 8 at 240 substeps/s and predicts at most
+       // seven substeps of eight, every error finite and small
         const Table t = readCsv(o.out + "/temporal_lod.csv");
         const int ci = column(t, "interval"), ck = column(t, "resolved_interval"), cp = column(t, "predicted_pct"),
                   cm = column(t, "force_error_mean_pct"), cx = column(t, "force_error_max_pct"),
@@ -147,7 +147,7 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
         for (std::size_t i = 1; i < t.size(); ++i) {
             const int interval = int(num(t[i], ci)), k = int(num(t[i], ck));
             intervals.insert(interval);
-            CHECK(k == (interval == 0 ? 4 : interval));  // the default: every 4th substep at 240/s
+            CHECK(k == (interval == 0 ? 8 : interval));  // the default: every 8th substep at 240/s
             CHECK(num(t[i], cp) <= 100.0 * (k - 1) / k + 1e-9);
             if (k == 1) CHECK(num(t[i], cp) == 0);
             CHECK(num(t[i], cm) < 0.1);  // % of rho g V: the wave patch's error plus what prediction adds
