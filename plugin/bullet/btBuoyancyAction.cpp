@@ -526,8 +526,8 @@ bool btBuoyancyAction::predictHydrostatics(std::uint64_t substep, const Eigen::I
     // body straddles the surface, two more intervals at the last interval's rate of volume change must keep it
     // within the tolerance of both ends.
     if (predicted.hydrostatics.waterline_area > 0) {
-        const double volume = m_shape->getUnitSolid().volume, v0 = m_history.volume(0);
-        const double reach = 2.0 * std::abs(v0 - m_history.volume(1));
+        const double volume = m_shape->getUnitSolid().volume, v0 = m_history.volume(0, interval);
+        const double reach = 2.0 * std::abs(v0 - m_history.volume(1, interval));
         if (!(v0 + reach <= (1.0 - m_tolerance) * volume && v0 - reach >= m_tolerance * volume)) return false;
     }
     // Pose check: a body moved by a contact, a teleport or an impulse leaves the extrapolated pose. With the
@@ -556,10 +556,14 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
     // any substep it predicted). A miss makes the next interval exact. Three misses in the last four checks: the body's
     // motion is too fast for its interval (the extrapolation's error grows like the interval⁴), which is halved
     // (down to 2, and only to a divisor of the resolved interval); it is doubled back after 16 passes in a row whose
-    // mean error × 2⁴ stays within half the tolerance, or after 64. Measured: an undamped sphere bobbing at
-    // ω = 4.4 rad/s missed half its checks at 1/30 s and lost 0.5 % of its amplitude a minute through the exact
-    // intervals the misses forced; halving, 0.08 %. A single miss (a wave overrunning a deck) keeps the interval.
+    // mean error × 2⁴ stays within half the tolerance, or after 64 (a miss in the first four checks after a
+    // doubling halves it again at once). The records are kept across the switches (btHydrostaticsHistory keeps
+    // seven, and interpolates the two a halving needs), so predictions go on without a warm-up. Measured: an
+    // undamped sphere bobbing at ω = 4.4 rad/s missed half its checks at 1/30 s and lost 0.5 % of its amplitude a
+    // minute through the exact intervals the misses forced; with the halving 0.3 %. A single miss (a wave
+    // overrunning a deck) keeps the interval.
     const double time = m_world->getTime();
+    bool halve = false;
     if (m_history.canCheck(substep, time, interval)) {
         btHydrostaticsSnapshot p = m_history.extrapolate(substep, interval);
         correctPose(p, exact.com, exact.rotation);  // as a prediction at this pose would be
@@ -570,6 +574,8 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
         const double error = reach * std::max((p.hydrostatics.force - h.force).norm() / scale,
                                               (p.hydrostatics.torque - h.torque).norm() / (scale * diameter));
         const bool miss = !(error <= m_tolerance);
+        const int probation = m_probation;
+        if (m_probation > 0) --m_probation;
         m_checkMisses = std::uint8_t((m_checkMisses << 1) | (miss ? 1 : 0));
         const int resolved = btBuoyancyResolveInterval(m_settings, dt);
         if (miss) {
@@ -577,10 +583,11 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
             m_passingErrorSum = 0;
             const int bits = (m_checkMisses & 1) + ((m_checkMisses >> 1) & 1) + ((m_checkMisses >> 2) & 1) +
                              ((m_checkMisses >> 3) & 1);
-            if (bits >= 3 && interval % 2 == 0 && interval / 2 >= 2) {
+            if ((bits >= 3 || probation > 0) && interval % 2 == 0 && interval / 2 >= 2) {
                 m_adaptedInterval = interval / 2;  // this substep is on the halved interval's grid too
                 m_checkMisses = 0;
-                m_history.clear();
+                m_probation = 0;
+                halve = true;  // the records' spacing, once this evaluation is pushed
             } else {
                 m_reuseCooldown = 1;
             }
@@ -598,8 +605,8 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
                 m_adaptedInterval = 2 * interval;  // on the doubled interval's grid: the next record is 2K away
                 m_checkPasses = 0;
                 m_passingErrorSum = 0;
-                m_checkMisses = 0;
-                m_history.clear();
+                m_checkMisses = 0;  // (the records kept include every other one at the doubled spacing)
+                m_probation = 4;    // a miss in the next four checks halves it again at once
             }
         }
     } else if (m_reuseCooldown > 0) {
@@ -612,10 +619,12 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
     if (!(omega2 * step * step <= 0.09)) m_reuseCooldown = std::max(m_reuseCooldown, 1);
     const bool finite = h.force.allFinite() && h.torque.allFinite() && std::isfinite(h.submerged_volume) &&
                         exact.dragForce.allFinite() && exact.dragTorque.allFinite();
-    if (finite)
+    if (finite) {
         m_history.push(substep, time, exact);
-    else
+        if (halve) m_history.halveSpacing(interval);
+    } else {
         m_history.clear();
+    }
 }
 
 void btBuoyancyAction::debugDraw(btIDebugDraw* debugDrawer) {

@@ -164,6 +164,7 @@ private:
     std::uint8_t m_checkMisses = 0;    ///< the last eight checks, one bit per miss (newest lowest)
     int m_checkPasses = 0;             ///< checks passed in a row at a halved interval
     double m_passingErrorSum = 0;      ///< the sum of those checks' errors, fraction of ρ g V
+    int m_probation = 0;               ///< checks left in which one miss undoes a doubling
     double m_tolerance = 1e-4;         ///< this substep's prediction tolerance (btBuoyancyResolveReuseTolerance)
     /// Slope scale of the water over the body at the last exact evaluation (0 flat, WaterPatch::slopeBound on a
     /// patch, 1 otherwise): weighs a horizontal drift in the pose check (btHydrostaticsHistory::poseDeviation).

@@ -64,29 +64,75 @@ btHydrostaticsSnapshot btHydrostaticsHistory::unpack(const std::array<double, kV
 }
 
 void btHydrostaticsHistory::push(std::uint64_t substep, double time, const btHydrostaticsSnapshot& snapshot) {
-    for (int i = kRecords - 1; i > 0; --i) m_records[std::size_t(i)] = m_records[std::size_t(i - 1)];
+    for (int i = kStored - 1; i > 0; --i) m_records[std::size_t(i)] = m_records[std::size_t(i - 1)];
     m_records[0].substep = substep;
     m_records[0].time = time;
     m_records[0].x = pack(snapshot);
     m_records[0].waterplane = snapshot.hydrostatics.waterplane.valid;
-    if (m_count < kRecords) ++m_count;
+    if (m_count < kStored) ++m_count;
+}
+
+bool btHydrostaticsHistory::find(int interval, int index[kRecords]) const {
+    if (m_count < kRecords || interval < 2) return false;
+    const std::uint64_t k = std::uint64_t(interval);
+    index[0] = 0;
+    int at = 0;
+    for (int j = 1; j < kRecords; ++j) {  // records newest first, substeps decreasing: search on from the last hit
+        const std::uint64_t want = m_records[0].substep - std::uint64_t(j) * k;
+        while (at + 1 < m_count && m_records[std::size_t(at + 1)].substep > want) ++at;
+        if (at + 1 >= m_count || m_records[std::size_t(at + 1)].substep != want) return false;
+        index[j] = ++at;
+    }
+    // Equal substep lengths: the records equally spaced in time.
+    const double span = m_records[0].time - m_records[std::size_t(index[1])].time;
+    if (!(span > 0)) return false;
+    for (int j = 1; j + 1 < kRecords; ++j) {
+        const double d = m_records[std::size_t(index[j])].time - m_records[std::size_t(index[j + 1])].time;
+        if (std::abs(d - span) > 1e-6 * span) return false;
+    }
+    return true;
 }
 
 bool btHydrostaticsHistory::spaced(std::uint64_t substep, double time, int interval, std::uint64_t maxAhead) const {
-    if (m_count < kRecords || interval < 2) return false;
-    const std::uint64_t k = std::uint64_t(interval);
+    int index[kRecords];
+    if (!find(interval, index)) return false;
     const Record& newest = m_records[0];
     if (substep <= newest.substep || substep - newest.substep > maxAhead) return false;
-    // Equal substep lengths: the records equally spaced in time, and `time` where that spacing puts it.
-    const double span = newest.time - m_records[1].time;
-    const double slack = 1e-6 * std::abs(span);
-    if (!(span > 0)) return false;
-    for (int i = 0; i + 1 < kRecords; ++i) {
-        const Record &a = m_records[std::size_t(i)], &b = m_records[std::size_t(i + 1)];
-        if (a.substep - b.substep != k || std::abs((a.time - b.time) - span) > slack) return false;
+    // `time` where the records' spacing puts it (a changed substep length makes the extrapolation meaningless).
+    const double span = newest.time - m_records[std::size_t(index[1])].time;
+    const double expected = newest.time + span * double(substep - newest.substep) / double(interval);
+    return std::abs(time - expected) <= 1e-6 * span;
+}
+
+void btHydrostaticsHistory::halveSpacing(int interval) {
+    int index[kRecords];
+    if (interval < 4 || interval % 2 != 0 || !find(interval, index)) {
+        clear();
+        return;
     }
-    const double expected = newest.time + span * double(substep - newest.substep) / double(k);
-    return std::abs(time - expected) <= slack;
+    // Cubic interpolation through the four records (Newton's backward form at a = −½ and −3/2, inside their span):
+    // the records K/2 before the newest and the second newest, so that the last four are K/2 apart.
+    Record r[kRecords];
+    for (int j = 0; j < kRecords; ++j) r[j] = m_records[std::size_t(index[j])];
+    Record mid[2];
+    for (int m = 0; m < 2; ++m) {
+        const double a = -0.5 - double(m);
+        const double c1 = a, c2 = 0.5 * a * (a + 1.0), c3 = c2 * (a + 2.0) / 3.0;
+        mid[m].substep = r[m].substep - std::uint64_t(interval / 2);
+        mid[m].time = 0.5 * (r[m].time + r[m + 1].time);
+        for (std::size_t i = 0; i < mid[m].x.size(); ++i) {
+            const double x0 = r[0].x[i], x1 = r[1].x[i], x2 = r[2].x[i], x3 = r[3].x[i];
+            mid[m].x[i] = x0 + c1 * (x0 - x1) + c2 * (x0 - 2.0 * x1 + x2) + c3 * (x0 - 3.0 * (x1 - x2) - x3);
+        }
+        mid[m].waterplane = r[0].waterplane && r[1].waterplane && r[2].waterplane && r[3].waterplane;
+    }
+    m_records[0] = r[0];
+    m_records[1] = mid[0];
+    m_records[2] = r[1];
+    m_records[3] = mid[1];
+    m_records[4] = r[2];
+    m_records[5] = r[3];
+    m_count = 6;
 }
 
 bool btHydrostaticsHistory::canPredict(std::uint64_t substep, double time, int interval) const {
@@ -100,17 +146,26 @@ bool btHydrostaticsHistory::canCheck(std::uint64_t substep, double time, int int
 
 btHydrostaticsSnapshot btHydrostaticsHistory::extrapolate(std::uint64_t substep, int interval) const {
     // Newton's backward-difference formula on four equally spaced samples (see the header).
+    int index[kRecords];
+    if (!find(interval, index)) return btHydrostaticsSnapshot{};
     const double a = double(substep - m_records[0].substep) / double(interval);
     const double c1 = a, c2 = 0.5 * a * (a + 1.0), c3 = c2 * (a + 2.0) / 3.0;
+    const Record &r0 = m_records[0], &r1 = m_records[std::size_t(index[1])], &r2 = m_records[std::size_t(index[2])],
+                 &r3 = m_records[std::size_t(index[3])];
     std::array<double, kValues> y;
     for (std::size_t i = 0; i < y.size(); ++i) {
-        const double x0 = m_records[0].x[i], x1 = m_records[1].x[i], x2 = m_records[2].x[i], x3 = m_records[3].x[i];
+        const double x0 = r0.x[i], x1 = r1.x[i], x2 = r2.x[i], x3 = r3.x[i];
         y[i] = x0 + c1 * (x0 - x1) + c2 * (x0 - 2.0 * x1 + x2) + c3 * (x0 - 3.0 * (x1 - x2) - x3);
     }
     btHydrostaticsSnapshot s = unpack(y);
-    s.hydrostatics.waterplane.valid = true;
-    for (const Record& r : m_records) s.hydrostatics.waterplane.valid = s.hydrostatics.waterplane.valid && r.waterplane;
+    s.hydrostatics.waterplane.valid = r0.waterplane && r1.waterplane && r2.waterplane && r3.waterplane;
     return s;
+}
+
+double btHydrostaticsHistory::volume(int intervalsBack, int interval) const {
+    int index[kRecords];
+    if (intervalsBack < 0 || intervalsBack >= kRecords || !find(interval, index)) return 0.0;
+    return m_records[std::size_t(index[intervalsBack])].x[9];
 }
 
 double btHydrostaticsHistory::poseDeviation(const Eigen::Vector3d& com, const Eigen::Matrix3d& rotation,

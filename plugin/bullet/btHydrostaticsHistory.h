@@ -39,13 +39,15 @@ class btHydrostaticsHistory {
 public:
     /// Records the extrapolation uses (four: a cubic).
     static constexpr int kRecords = 4;
+    /// Records kept: enough for four at twice the spacing (an interval doubled keeps predicting at once).
+    static constexpr int kStored = 7;
     /// Numbers per record (see pack).
     static constexpr int kValues = 41;
 
     /// Forget every record (after a dry, rejected or primed substep, a settings change, a wake-up).
     void clear() { m_count = 0; }
 
-    /// Number of records held (0..kRecords).
+    /// Number of records held (0..kStored).
     int size() const { return m_count; }
 
     /// Record an exact evaluation made at `substep` (the world's substep counter) and water time `time` (s).
@@ -60,8 +62,15 @@ public:
     /// there checks the predictor.
     bool canCheck(std::uint64_t substep, double time, int interval) const;
 
-    /// The submerged volume of record `age` (0 the newest … size() − 1), m³.
-    double volume(int age) const { return m_records[std::size_t(age)].x[9]; }
+    /// The submerged volume `intervalsBack` intervals before the newest record (0 … kRecords − 1), m³; 0 when the
+    /// records are not spaced by `interval`.
+    double volume(int intervalsBack, int interval) const;
+
+    /// The body's interval is halved from `interval` (even, ≥ 4): the two missing records, half an interval before
+    /// the newest and the second newest, are interpolated (a cubic through the four, well inside their span), so
+    /// that predictions go on at the new spacing. Otherwise the history is cleared.
+
+    void halveSpacing(int interval);
 
     /// The records extrapolated to `substep` (call only when canPredict or canCheck). Its waterplane moments are
     /// valid when every record's were.
@@ -90,6 +99,9 @@ public:
                                     const btHydrostaticsSnapshot& predicted, double radius);
 
 private:
+    /// The newest record and the three `interval` substeps apart before it (indices into m_records), equally
+    /// spaced in time; false when they are not all held.
+    bool find(int interval, int index[kRecords]) const;
     /// Records equally spaced, `substep` at most `interval` past the newest, `time` consistent with both.
     bool spaced(std::uint64_t substep, double time, int interval, std::uint64_t maxAhead) const;
     /// One exact evaluation: the world substep, its water time (s) and the snapshot's numbers.
@@ -101,7 +113,7 @@ private:
     };
     static std::array<double, kValues> pack(const btHydrostaticsSnapshot& s);
     static btHydrostaticsSnapshot unpack(const std::array<double, kValues>& x);
-    std::array<Record, kRecords> m_records;  ///< newest first
+    std::array<Record, kStored> m_records;  ///< newest first
     int m_count = 0;
 };
 

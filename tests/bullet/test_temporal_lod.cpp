@@ -113,8 +113,9 @@ TEST_CASE("hydrostatics history: the extrapolation reproduces cubics in time", "
         CHECK(d < 1e-12);
         CHECK(p.hydrostatics.waterplane.valid);
     }
-    CHECK(history.volume(0) == Approx(cubicSnapshot(16 * dt).hydrostatics.submerged_volume));
-    CHECK(history.volume(1) == Approx(cubicSnapshot(12 * dt).hydrostatics.submerged_volume));
+    CHECK(history.volume(0, k) == Approx(cubicSnapshot(16 * dt).hydrostatics.submerged_volume));
+    CHECK(history.volume(1, k) == Approx(cubicSnapshot(12 * dt).hydrostatics.submerged_volume));
+    CHECK(history.volume(1, 2 * k) == 0.0);  // not spaced by 8
     CHECK_FALSE(history.canPredict(16, 16 * dt, k));   // at the newest record itself
     CHECK_FALSE(history.canPredict(17, 17 * dt, 3));   // records not 3 apart
     CHECK_FALSE(history.canPredict(17, 16.5 * dt, k)); // the substep length changed since the records
