@@ -219,8 +219,9 @@ void writeTemporalLodCsv(const std::string& path, const std::vector<TemporalLodR
 std::string temporalLodMarkdown(const std::vector<TemporalLodRow>& rows) {
     std::ostringstream md;
     md << "\n## Temporal level of detail (hydrostaticsInterval; temporal_lod.csv)\n\n"
-       << "Hydrostatics and drag evaluated exactly every K-th substep, extrapolated quadratically from the last three "
-          "exact evaluations in between (btHydrostaticsHistory). Fleet in the P3 sea at 240 substeps/s, one thread, "
+       << "Hydrostatics and drag evaluated exactly every K-th substep, extrapolated from the last four exact "
+          "evaluations (a cubic) in between and moved to the actual pose through the hydrostatic stiffness "
+          "(btHydrostaticsHistory). Fleet in the P3 sea at 240 substeps/s, one thread, "
           "Bullet's step included; force error of every applied substep against clipping every triangle with exact "
           "wave queries, % of ρ g V. Energy: an undamped bobbing box, worst drift over 60 s, % of its energy above "
           "rest; an undamped bobbing sphere, its heave amplitude over the last 5 s of 60 against the first 5 s.\n\n"

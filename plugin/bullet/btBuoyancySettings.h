@@ -133,7 +133,7 @@ int btBuoyancyAutomaticInterval(double dt, double periodSeconds = 1.0 / 30.0);
 /// error model whose worst force error × kLodSafetyFactor (2) fits the budget (a force error of x % of ρ g V is a
 /// submerged-volume error of x % of V), never below 1/30 s. The model (docs/benchmarks/temporal_lod.csv: the
 /// 3,400-triangle boat in the P3 sea at 240 substeps/s, tolerance 0.2 %; other bodies and seas can differ):
-/// 33 ms 0.21 %, 50 ms 0.39 %, 67 ms 0.68 %.
+/// 33 ms 0.21 %, 50 ms 0.24 %, 67 ms 0.28 %.
 /// @param[out] modelErrorPct  optional: the model's worst force error at that period, % of ρ g V (0 at the default)
 double btBuoyancyEvaluationPeriod(const btBuoyancySettings& settings, double* modelErrorPct = nullptr);
 

@@ -482,7 +482,7 @@ TEST_CASE("the automatic interval evaluates exactly at least every 1/30 s", "[bu
 }
 
 TEST_CASE("an error budget lengthens the automatic interval, and the pick is described", "[bullet][temporal]") {
-    // The temporal model (btBuoyancyEvaluationPeriod's doc): 33 ms 0.21 %, 50 ms 0.39 %, 67 ms 0.68 % worst force
+    // The temporal model (btBuoyancyEvaluationPeriod's doc): 33 ms 0.21 %, 50 ms 0.24 %, 67 ms 0.28 % worst force
     // error; a period is allowed when twice its error fits the budget.
     btBuoyancySettings s;
     const double dt = 1.0 / 240.0;
@@ -492,19 +492,19 @@ TEST_CASE("an error budget lengthens the automatic interval, and the pick is des
     s.errorBudget = 0.01;  // below every model point: the default period and tolerance
     CHECK(btBuoyancyResolveInterval(s, dt) == 8);
     CHECK(btBuoyancyResolveReuseTolerance(s) == 1e-4);
-    s.errorBudget = 0.5;   // 2 × 0.21 fits (33 ms, the default period anyway), 2 × 0.39 does not
+    s.errorBudget = 0.45;  // 2 × 0.21 fits (33 ms, the default period anyway), 2 × 0.24 does not
     CHECK(btBuoyancyEvaluationPeriod(s) == Approx(8.0 / 240.0));
     CHECK(btBuoyancyResolveInterval(s, dt) == 8);
-    CHECK(btBuoyancyResolveReuseTolerance(s) == Approx(2.5e-3));  // half the budget, as a fraction
-    s.errorBudget = 0.8;   // 2 × 0.39 fits: 50 ms
+    CHECK(btBuoyancyResolveReuseTolerance(s) == Approx(2.25e-3));  // half the budget, as a fraction
+    s.errorBudget = 0.5;   // 2 × 0.24 fits: 50 ms
     CHECK(btBuoyancyResolveInterval(s, dt) == 12);
-    s.errorBudget = 1.4;   // every point fits: 1/15 s
+    s.errorBudget = 0.6;   // every point fits: 1/15 s
     double modelError = 0;
     CHECK(btBuoyancyEvaluationPeriod(s, &modelError) == Approx(16.0 / 240.0));
-    CHECK(modelError == Approx(0.68));
+    CHECK(modelError == Approx(0.28));
     CHECK(btBuoyancyResolveInterval(s, dt) == 16);
     CHECK(btBuoyancyResolveInterval(s, 1.0 / 60.0) == 4);
-    CHECK(btBuoyancyResolveReuseTolerance(s) == Approx(7e-3));
+    CHECK(btBuoyancyResolveReuseTolerance(s) == Approx(3e-3));
     const btBuoyancyLevelOfDetail lod = btBuoyancyPickLevelOfDetail(s, 3400);
     CHECK(lod.evaluationPeriod == Approx(16.0 / 240.0));
     CHECK_THAT(lod.description, Catch::Contains("exact hydrostatics every 66.7 ms"));
