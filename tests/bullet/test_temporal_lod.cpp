@@ -94,6 +94,15 @@ btBuoyancySettings intervalSettings(int k) {
     return s;
 }
 
+/// The default (automatic) interval with nothing that removes energy: no drag, no damping, no added mass.
+btBuoyancySettings undampedDefaults() {
+    btBuoyancySettings s = intervalSettings(0);
+    s.dragCoefficient = 0;
+    s.linearDamping = 0;
+    s.addedMass = false;
+    return s;
+}
+
 }  // namespace
 
 TEST_CASE("hydrostatics history: the extrapolation reproduces cubics in time", "[bullet][temporal]") {
@@ -365,10 +374,7 @@ TEST_CASE("defaults: an undamped bobbing sphere keeps its amplitude (energy) ove
     // Oracle: an undamped oscillator keeps its energy, so its amplitude; issue 2 allows 1 % of energy a minute
     // (0.5 % of amplitude). The sphere's waterline grows and shrinks with its draft: its restoring force is not
     // the linear part the prediction's heave correction makes exact, so what is left is the extrapolated remainder.
-    btBuoyancySettings s = intervalSettings(0);  // the automatic interval: every 8th substep at 240/s
-    s.dragCoefficient = 0;
-    s.linearDamping = 0;
-    s.addedMass = false;
+    const btBuoyancySettings s = undampedDefaults();  // the automatic interval: every 8th substep at 240/s
     auto shape = btBuoyancyShape::create(buoyancy::makeSphereMesh(0.5, 48, 24), s);
     BulletTestWorld w;
     btBuoyantBodySettings body;
@@ -397,10 +403,7 @@ TEST_CASE("defaults: an undamped rolling box keeps its roll amplitude (energy) o
     // moment (ρ g ∫z² dA) and the turned centre of buoyancy; the prediction follows the actual roll angle through
     // them (btBuoyancyAction::correctPose), so only the remainder is extrapolated. A 2 × 0.5 × 1 m box at density
     // ratio 0.5 (GM = 0.21 m, ω ≈ 4.4 rad/s) rolled 0.08 rad about its long axis.
-    btBuoyancySettings s = intervalSettings(0);
-    s.dragCoefficient = 0;
-    s.linearDamping = 0;
-    s.addedMass = false;
+    const btBuoyancySettings s = undampedDefaults();
     auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(2.0, 0.5, 1.0), s);
     BulletTestWorld w;
     btBuoyantBodySettings body;
