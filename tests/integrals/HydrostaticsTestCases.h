@@ -91,4 +91,29 @@ inline Eigen::Isometry3d poseAcrossWaterline(std::mt19937& rng, const btWaterSur
     return pose;
 }
 
+/// Five closed oracle meshes of different kinds (flat faces, a tetrahedron, curved, genus 1, mixed).
+inline std::vector<NamedMesh> fiveOracleShapes() {
+    return {{"box", oracleBox(1.0, 0.6, 0.8)},
+            {"tetrahedron", oracleTetrahedron(0.9)},
+            {"sphere", oracleSphere(0.5, 32, 16)},
+            {"torus", oracleTorus(0.6, 0.2, 40, 20)},
+            {"cylinder", oracleCylinder(0.3, 1.2, 24)}};
+}
+
+/// The part of the triangle (a, b, c) with y ≤ h (Sutherland–Hodgman against the plane, written here independently of
+/// the library's clipping): its corners in order into poly, their count returned (0, 3 or 4; corners on the plane
+/// are kept, crossings added only where an edge goes strictly from one side to the other).
+inline int clipTriangleBelow(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, double h,
+                             Eigen::Vector3d poly[4]) {
+    const Eigen::Vector3d* corner[3] = {&a, &b, &c};
+    int n = 0;
+    for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d& p = *corner[k];
+        const Eigen::Vector3d& q = *corner[(k + 1) % 3];
+        if (p.y() <= h) poly[n++] = p;
+        if ((p.y() < h && q.y() > h) || (p.y() > h && q.y() < h)) poly[n++] = p + (h - p.y()) / (q.y() - p.y()) * (q - p);
+    }
+    return n;
+}
+
 }  // namespace buoyancy_test

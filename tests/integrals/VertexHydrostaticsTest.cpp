@@ -23,27 +23,12 @@ using namespace buoyancy_test;
 namespace {
 constexpr double kRho = 1000, kG = 9.81;
 
-std::vector<NamedMesh> shapes() {
-    return {{"box", oracleBox(1.0, 0.6, 0.8)},
-            {"tetrahedron", oracleTetrahedron(0.9)},
-            {"sphere", oracleSphere(0.5, 32, 16)},
-            {"torus", oracleTorus(0.6, 0.2, 40, 20)},
-            {"cylinder", oracleCylinder(0.3, 1.2, 24)}};
-}
-
-/// Wetted area below y = h of a posed mesh: each triangle clipped against the plane (written here, independent).
+/// Wetted area below y = h of a posed mesh: each triangle clipped against the plane (clipTriangleBelow, independent).
 double wettedAreaBelow(const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Vector3i>& tris, double h) {
     double area = 0;
     for (const auto& t : tris) {
         Eigen::Vector3d poly[4];
-        int n = 0;
-        for (int k = 0; k < 3; ++k) {
-            const Eigen::Vector3d& a = v[std::size_t(t[k])];
-            const Eigen::Vector3d& b = v[std::size_t(t[(k + 1) % 3])];
-            if (a.y() <= h) poly[n++] = a;
-            if ((a.y() < h) != (b.y() < h) && a.y() != h && b.y() != h)
-                poly[n++] = a + (h - a.y()) / (b.y() - a.y()) * (b - a);
-        }
+        const int n = clipTriangleBelow(v[std::size_t(t[0])], v[std::size_t(t[1])], v[std::size_t(t[2])], h, poly);
         for (int k = 1; k + 1 < n; ++k) area += 0.5 * (poly[k] - poly[0]).cross(poly[k + 1] - poly[0]).norm();
     }
     return area;
@@ -51,7 +36,7 @@ double wettedAreaBelow(const std::vector<Eigen::Vector3d>& v, const std::vector<
 }  // namespace
 
 TEST_CASE("vertex shares: sums of the per-triangle terms they regroup", "[integrals][vertex]") {
-    for (const auto& s : shapes()) {
+    for (const auto& s : fiveOracleShapes()) {
         INFO(s.name);
         const TriangleMesh mesh = toTriangleMesh(s.mesh);
         const VertexShares sh = buildVertexShares(mesh);
@@ -87,7 +72,7 @@ TEST_CASE("vertex hydrostatics in flat water: the oracle and Archimedes to round
           "[integrals][vertex]") {
     std::mt19937 rng(23);
     ArchimedesErrors worst;
-    for (const auto& s : shapes()) {
+    for (const auto& s : fiveOracleShapes()) {
         const TriangleMesh mesh = toTriangleMesh(s.mesh);
         const VertexShares sh = buildVertexShares(mesh);
         const double Vfull = oracleDryMoments(s.mesh.verts, s.mesh.tris).volume;
@@ -132,7 +117,7 @@ TEST_CASE("vertex hydrostatics on Gerstner waves: clipping every triangle with t
     int straddling = 0;
     for (const auto* waves : {&p3, &shortSea}) {
         const btGerstnerWaterSurface sea(*waves);
-        for (const auto& s : shapes()) {
+        for (const auto& s : fiveOracleShapes()) {
             const TriangleMesh mesh = toTriangleMesh(s.mesh);
             const VertexShares sh = buildVertexShares(mesh);
             const double Vfull = oracleDryMoments(s.mesh.verts, s.mesh.tris).volume;

@@ -31,13 +31,7 @@ std::array<double, 6> divergenceOracle(const std::vector<Eigen::Vector3d>& v, co
     std::array<double, 6> m{};
     for (const auto& t : tris) {
         Eigen::Vector3d poly[4];
-        int n = 0;
-        for (int k = 0; k < 3; ++k) {
-            const Eigen::Vector3d& a = v[std::size_t(t[k])];
-            const Eigen::Vector3d& b = v[std::size_t(t[(k + 1) % 3])];
-            if (a.y() <= 0) poly[n++] = a;
-            if ((a.y() < 0 && b.y() > 0) || (a.y() > 0 && b.y() < 0)) poly[n++] = a + (-a.y()) / (b.y() - a.y()) * (b - a);
-        }
+        const int n = clipTriangleBelow(v[std::size_t(t[0])], v[std::size_t(t[1])], v[std::size_t(t[2])], 0.0, poly);
         for (int k = 1; k + 1 < n; ++k) {
             const Eigen::Vector3d p[3] = {poly[0] - r, poly[k] - r, poly[k + 1] - r};
             const double ay = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).y();  // ∫ n_y dA over the piece
@@ -59,14 +53,6 @@ std::array<double, 6> divergenceOracle(const std::vector<Eigen::Vector3d>& v, co
         }
     }
     return m;
-}
-
-std::vector<NamedMesh> shapes() {
-    return {{"box", oracleBox(1.0, 0.6, 0.8)},
-            {"tetrahedron", oracleTetrahedron(0.9)},
-            {"sphere", oracleSphere(0.5, 32, 16)},
-            {"torus", oracleTorus(0.6, 0.2, 40, 20)},
-            {"cylinder", oracleCylinder(0.3, 1.2, 24)}};
 }
 
 std::array<double, 6> fromResult(const HydrostaticsResult& h) {
@@ -125,7 +111,7 @@ TEST_CASE("waterplane moments: closed meshes at random poses against the diverge
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> U(-1.0, 1.0);
     const btFlatWaterSurface flat(0.0);
-    for (const NamedMesh& s : shapes()) {
+    for (const NamedMesh& s : fiveOracleShapes()) {
         const TriangleMesh mesh = toTriangleMesh(s.mesh);
         const MeshMomentTree tree = buildMeshMomentTree(mesh);
         const VertexShares shares = buildVertexShares(mesh);
