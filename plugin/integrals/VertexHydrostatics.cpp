@@ -3,17 +3,19 @@
 /// the same water model and the same result as clippedHydrostatics to rounding (the water over each triangle is the
 /// plane through its corners' heights; flat water is exact), at a fraction of its cost. Four passes:
 ///  1. each vertex: D_v = y_v − f(x_v, z_v) (body → world by the rows of R; on waves the height is interpolated from
-///     the patch, and only for the vertices that can be under water: y_v ≤ the highest value the patch can take);
+///     the patch, several vertices per instruction (VertexPassKernels.h), and only counted for the vertices that can
+///     be under water: y_v ≤ the highest value the patch can take);
 ///  2. each vertex with D_v ≤ 0: the shares D_v B_v, D_v T_v, D_v M_v, D_v² B_v, B_v, a_v summed (several vertices
 ///     per instruction: SSE2, AVX2 or AVX-512 chosen at run time, VertexSharesKernel.h);
 ///  3. each triangle: all corners under water → its ∫ D² n_y cross term (A_t (Σ D_i)²); corners on both sides (or an
-///     edge exactly on the water) → listed;
+///     edge exactly on the water) → listed (several triangles per instruction, VertexPassKernels.h);
 ///  4. the straddling triangles listed in pass 3: the shares their wet corners added are taken back and they are
 ///     clipped exactly (BodyFrameSums.h).
 /// Triangles entirely above the water cost one test each.
 
 #include "integrals/BodyFrameSums.h"
 #include "integrals/Hydrostatics.h"
+#include "integrals/VertexPassKernels.h"
 #include "integrals/VertexShares.h"
 #include "integrals/VertexSharesKernel.h"
 #include "integrals/WaterPatch.h"
@@ -81,30 +83,36 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
     const double waterHigh = flat ? flatH
                              : patch ? patch->maxNode() + 0.5 * (patch->maxNode() - patch->minNode())
                                      : std::numeric_limits<double>::infinity();
-    std::size_t nq = 0;
-    for (std::size_t v = 0; v < nv; ++v) {
-        const double y = r10 * qx[v] + r11 * qy[v] + r12 * qz[v] + t.y();
-        if (flat) {
-            D[v] = y - flatH;
-        } else if (y > waterHigh) {
-            D[v] = kNotComputed;
-        } else {
-            D[v] = y;
-            sc.x[nq] = r00 * qx[v] + r01 * qy[v] + r02 * qz[v] + t.x();
-            sc.z[nq] = r20 * qx[v] + r21 * qy[v] + r22 * qz[v] + t.z();
-            sc.index[nq++] = std::int32_t(v);
+    if (patch && !flat) {
+        // On a patch: the transform and the interpolation fused, several vertices per instruction
+        // (VertexPassKernels.h; bit for bit patch->height at each vertex up to the fused multiply-adds).
+        const double Rm[9] = {r00, r01, r02, r10, r11, r12, r20, r21, r22};
+        const double tv[3] = {t.x(), t.y(), t.z()};
+        if (!vertexDepthsOnPatch(shares, Rm, tv, patch->cellGrid(), waterHigh, D))
+            throw std::runtime_error("vertexHydrostatics: the water patch interpolated a non-finite height");
+    } else {
+        std::size_t nq = 0;
+        for (std::size_t v = 0; v < nv; ++v) {
+            const double y = r10 * qx[v] + r11 * qy[v] + r12 * qz[v] + t.y();
+            if (flat) {
+                D[v] = y - flatH;
+            } else if (y > waterHigh) {
+                D[v] = kNotComputed;
+            } else {
+                D[v] = y;
+                sc.x[nq] = r00 * qx[v] + r01 * qy[v] + r02 * qz[v] + t.x();
+                sc.z[nq] = r20 * qx[v] + r21 * qy[v] + r22 * qz[v] + t.z();
+                sc.index[nq++] = std::int32_t(v);
+            }
         }
-    }
-    if (nq > 0) {
-        if (patch)
-            patch->heights(sc.x.data(), sc.z.data(), nq, sc.f.data());  // interpolated (DESIGN-NOTES 2.5)
-        else
-            water.heights(sc.x.data(), sc.z.data(), nq, time, sc.f.data());  // one batch
-        for (std::size_t k = 0; k < nq; ++k) {
-            if (!std::isfinite(sc.f[k]))
-                throw std::runtime_error("vertexHydrostatics: the water surface returned a non-finite height at x=" +
-                                         std::to_string(sc.x[k]) + ", z=" + std::to_string(sc.z[k]));
-            D[sc.index[k]] -= sc.f[k];
+        if (nq > 0) {
+            water.heights(sc.x.data(), sc.z.data(), nq, time, sc.f.data());  // exact queries, one batch
+            for (std::size_t k = 0; k < nq; ++k) {
+                if (!std::isfinite(sc.f[k]))
+                    throw std::runtime_error("vertexHydrostatics: the water surface returned a non-finite height at x=" +
+                                             std::to_string(sc.x[k]) + ", z=" + std::to_string(sc.z[k]));
+                D[sc.index[k]] -= sc.f[k];
+            }
         }
     }
 
@@ -119,30 +127,19 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
     // Pass 3: triangles. Entirely wet: the (Σ D)² part of ∫ D² n_y. Straddling: listed, then (pass 4) their wet
     // corners' shares are taken back and they are clipped (the exact wetted part goes into `clipped`, positions
     // relative to q_r). Kept apart so that this loop, which sees every triangle, carries few values.
-    double Sx = 0, Sy = 0, Sz = 0;  // Σ_wet A_t (Σ D_i)²
+    double S[3] = {0, 0, 0};  // Σ_wet A_t (Σ D_i)²
     const std::int32_t* c0 = shares.corner[0].data();
     const std::int32_t* c1 = shares.corner[1].data();
     const std::int32_t* c2 = shares.corner[2].data();
     const double* ax = shares.ax.data();
     const double* ay = shares.ay.data();
     const double* az = shares.az.data();
-    std::int32_t* straddling = sc.straddling.data();
-    std::size_t ns = 0;
-    for (std::size_t tr = 0; tr < nt; ++tr) {
-        const double d0 = D[c0[tr]], d1 = D[c1[tr]], d2 = D[c2[tr]];
-        const int wet = int(d0 <= 0) + int(d1 <= 0) + int(d2 <= 0);
-        // Wet with an edge exactly on the water (two corners at D = 0, the third below): clipped below like the
-        // straddling ones, so that the edge reaches the waterplane moments (BodyFrameSums.h); the sums are the same.
-        const int onWater = int(d0 == 0) + int(d1 == 0) + int(d2 == 0);
-        if (wet == 3 && onWater != 2) {
-            const double s = d0 + d1 + d2, s2 = s * s;
-            Sx += s2 * ax[tr];
-            Sy += s2 * ay[tr];
-            Sz += s2 * az[tr];
-        } else if (wet > 0) {
-            straddling[ns++] = std::int32_t(tr);
-        }
-    }
+    const std::int32_t* straddling = sc.straddling.data();
+    // Wet with an edge exactly on the water (two corners at D = 0, the third below): listed like the straddling ones,
+    // so that the edge reaches the waterplane moments (BodyFrameSums.h); the sums are the same. Several triangles per
+    // instruction (VertexPassKernels.h).
+    const std::size_t ns = sumWetTriangles(shares, D, S, sc.straddling.data());
+    const double Sx = S[0], Sy = S[1], Sz = S[2];
     // Pass 4: the straddling triangles.
     double cQx = 0, cQy = 0, cQz = 0;  // Σ shares of ∫ s D n_y taken back (about the origin), = D_i w_i (A_t·u)
     NodeSums clipped;

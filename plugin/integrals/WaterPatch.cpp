@@ -117,6 +117,28 @@ void WaterPatch::computeCell(std::size_t c, int i, int j) const {
     m_cellStamp[c] = m_epoch;
 }
 
+void WaterPatch::computeAllCells() const {
+    if (m_allCellsEpoch == m_epoch) return;
+    const int cellsPerRow = m_m - 3;
+    for (int j = 1; j <= cellsPerRow; ++j)
+        for (int i = 1; i <= cellsPerRow; ++i) {
+            const std::size_t c = std::size_t(j - 1) * std::size_t(cellsPerRow) + std::size_t(i - 1);
+            if (m_cellStamp[c] != m_epoch) computeCell(c, i, j);
+        }
+    m_allCellsEpoch = m_epoch;
+}
+
+WaterPatch::CellGrid WaterPatch::cellGrid() const {
+    computeAllCells();
+    CellGrid g;
+    g.x0 = m_x0;
+    g.z0 = m_z0;
+    g.invH = m_invH;
+    g.nodes = m_m;
+    g.coefficients = m_coef.data();
+    return g;
+}
+
 const double* WaterPatch::cell(double x, double z, double& tu, double& tv) const {
     const double u = (x - m_x0) * m_invH, v = (z - m_z0) * m_invH;
     // Cells 1..M−3 have both neighbours; clamp outside points to the border cells.
@@ -163,14 +185,7 @@ void WaterPatch::heights(const double* x, const double* z, std::size_t n, double
     // without the per-point stamp check, the index arithmetic of cell() inlined.
     const int cellsPerRow = m_m - 3;
     if (n >= std::size_t(cellsPerRow) * std::size_t(cellsPerRow)) {
-        if (m_allCellsEpoch != m_epoch) {
-            for (int j = 1; j <= cellsPerRow; ++j)
-                for (int i = 1; i <= cellsPerRow; ++i) {
-                    const std::size_t c = std::size_t(j - 1) * std::size_t(cellsPerRow) + std::size_t(i - 1);
-                    if (m_cellStamp[c] != m_epoch) computeCell(c, i, j);
-                }
-            m_allCellsEpoch = m_epoch;
-        }
+        computeAllCells();
         const double* coef = m_coef.data();
         const double lo = 1.0, hi = double(m_m - 2), x0 = m_x0, z0 = m_z0, invH = m_invH;
         const int last = m_m - 3;

@@ -35,6 +35,19 @@ public:
     /// Batch form of height().
     void heights(const double* x, const double* z, std::size_t n, double* outHeight) const;
 
+    /// The interpolant's cells, for evaluating it in batches outside this class (VertexPassKernels.h). World (x, z)
+    /// maps to the grid as u = (x − x0)·invH, v = (z − z0)·invH, clamped to [1, nodes − 2]; cell (i, j) = (⌊u⌋, ⌊v⌋),
+    /// each at most nodes − 3, holds 16 power-basis coefficients C[4p + q] of tu^p tv^q (tu = u − i, tv = v − j) at
+    /// coefficients + 16 ((j − 1)(nodes − 3) + i − 1).
+    struct CellGrid {
+        double x0 = 0, z0 = 0;  ///< world position of node (0, 0), m
+        double invH = 1;        ///< 1 / spacing, 1/m
+        int nodes = 0;          ///< nodes per side M
+        const double* coefficients = nullptr;  ///< 16 per cell, row by row; valid until the next build()
+    };
+    /// Every cell's coefficients computed (once per build), and where they are.
+    CellGrid cellGrid() const;
+
     /// Second-order Taylor data of the interpolant at world (x, z) (clamped like height()): value f (m), gradient
     /// (fx, fz) and second derivatives (fxx, fxz, fzz, 1/m). Used by the exact-mesh moment tree (DESIGN-NOTES 2.5).
     void taylor(double x, double z, double& f, double& fx, double& fz, double& fxx, double& fxz, double& fzz) const;
@@ -69,6 +82,8 @@ private:
     const double* cell(double x, double z, double& tu, double& tv) const;
     /// Compute cell c's (column i, row j, 1-based node indices) 16 coefficients and stamp it.
     void computeCell(std::size_t c, int i, int j) const;
+    /// Compute every cell not yet computed since the last build.
+    void computeAllCells() const;
 
     int m_m = 0;
     double m_x0 = 0, m_z0 = 0, m_h = 1, m_invH = 1;
