@@ -140,62 +140,110 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
     // instruction (VertexPassKernels.h).
     const std::size_t ns = sumWetTriangles(shares, D, S, sc.straddling.data());
     const double Sx = S[0], Sy = S[1], Sz = S[2];
-    // Pass 4: the straddling triangles.
-    double cQx = 0, cQy = 0, cQz = 0;  // Σ shares of ∫ s D n_y taken back (about the origin), = D_i w_i (A_t·u)
-    NodeSums clipped;
+    // Pass 4: the listed triangles, in closed form. The shares pass 2 added for a listed triangle's wet corners are
+    // taken back, and its wet part is added. That part is cut off by one waterline segment E₊E₋, where E₊ and E₋ are the
+    // points with D = 0 on the two edges from the triangle's lone corner L (the one corner on its side of the water: the
+    // only dry one, or the only wet one; with no dry corner, the one below the two on the water), E₊ on L → L+1 and E₋
+    // on L → L−1 (winding order). The lone triangle (L, E₊, E₋) lies in the triangle's plane (area vector t₊ t₋ A_t)
+    // with D = 0 at E₊ and E₋, so addBodyTriangle's edge-midpoint sums reduce to (body frame, about the origin)
+    //   ∫ D n = D_L A/3,  ∫ D q × n = m × A,  ∫ q D n_y = (A·u) m,  ∫ D² n_y = (A·u) D_L²/6,  m = D_L (2 q_L + E₊ + E₋)/12;
+    // the wet part is the lone triangle when L is wet, the whole triangle minus it when L is dry (the same clip as
+    // addClippedBodyTriangle, without cutting a polygon; the waterline segment is the wet part's edge on the water).
+    double cQx = 0, cQy = 0, cQz = 0;  // Σ ∫ q D n_y taken back (about the origin): D_i w_i (A_t·u) per wet corner
+    double D2 = 0;                     // ∫ D² n_y of the listed triangles' wet parts, less their wet corners' shares
+    WaterlineSums waterline;
+    const double xr = X.dot(qr), zr = Z.dot(qr);  // the reference point's world horizontal coordinates, body origin
     for (std::size_t k = 0; k < ns; ++k) {
         const std::size_t tr = std::size_t(straddling[k]);
-        const std::int32_t i0 = c0[tr], i1 = c1[tr], i2 = c2[tr];
-        const std::int32_t idx[3] = {i0, i1, i2};
+        const std::int32_t idx[3] = {c0[tr], c1[tr], c2[tr]};
         const Eigen::Vector3d A(ax[tr], ay[tr], az[tr]);
-        const Eigen::Vector3d sum(qx[i0] + qx[i1] + qx[i2], qy[i0] + qy[i1] + qy[i2], qz[i0] + qz[i1] + qz[i2]);
-        // The wet corners' shares (VertexShares.h), summed over the corners and taken back once per triangle.
-        double sd = 0, sd2 = 0, wet = 0;
-        Eigen::Vector3d sdw = Eigen::Vector3d::Zero();  // Σ D_i w_i
-        BodyCorner in[3];
-        for (int k = 0; k < 3; ++k) {
-            const std::int32_t v = idx[k];
-            const Eigen::Vector3d q(qx[v], qy[v], qz[v]);
-            double d = D[v];
-            if (d <= 0) {
-                sd += d;
-                sd2 += d * d;
-                sdw += d * (q + sum);  // / 12 below
-                wet += 1;
-            } else if (d == kNotComputed) {  // dry corner without its height: needed for the crossing point
-                const double x = r00 * q.x() + r01 * q.y() + r02 * q.z() + t.x();
-                const double z = r20 * q.x() + r21 * q.y() + r22 * q.z() + t.z();
-                const double y = r10 * q.x() + r11 * q.y() + r12 * q.z() + t.y();
-                d = y - patch->height(x, z);
-                D[v] = d;  // (> 0: above every value of the interpolant)
+        const double Au = A.dot(u), absA = shares.absArea[tr];
+        Eigen::Vector3d q[3];
+        double d[3];
+        int dry = 0;
+        for (int c = 0; c < 3; ++c) {
+            const std::int32_t v = idx[c];
+            q[c] = Eigen::Vector3d(qx[v], qy[v], qz[v]);
+            d[c] = D[v];
+            if (d[c] == kNotComputed) {  // dry corner without its height: needed for the crossing point
+                const double x = r00 * q[c].x() + r01 * q[c].y() + r02 * q[c].z() + t.x();
+                const double z = r20 * q[c].x() + r21 * q[c].y() + r22 * q[c].z() + t.z();
+                const double y = r10 * q[c].x() + r11 * q[c].y() + r12 * q[c].z() + t.y();
+                d[c] = y - patch->height(x, z);
+                D[v] = d[c];  // (> 0: above every value of the interpolant)
             }
-            in[k].s = q - qr;
-            in[k].D = d;
+            dry += d[c] > 0;
+        }
+        const Eigen::Vector3d sum = q[0] + q[1] + q[2];
+        // The whole triangle's linear terms, per corner: D_i A/3, D_i w_i × A, D_i w_i (A·u), w_i = (q_i + Σq)/12.
+        double sdWet = 0, sd2Wet = 0, wet = 0, sdAll = 0, sd2All = 0;
+        Eigen::Vector3d sdwWet = Eigen::Vector3d::Zero(), sdwAll = Eigen::Vector3d::Zero();
+        for (int c = 0; c < 3; ++c) {
+            const Eigen::Vector3d dw = d[c] * (q[c] + sum);  // D_i w_i × 12
+            sdAll += d[c];
+            sd2All += d[c] * d[c];
+            sdwAll += dw;
+            if (d[c] <= 0) {
+                sdWet += d[c];
+                sd2Wet += d[c] * d[c];
+                sdwWet += dw;
+                wet += 1;
+            }
+        }
+        // The lone corner.
+        int L = 0;
+        if (dry == 1 || dry == 2) {
+            const bool loneDry = dry == 1;
+            while ((d[L] > 0) != loneDry) ++L;
+        } else {  // no dry corner: two on the water, L the one below
+            while (d[L] == 0) ++L;
+        }
+        const int Lp = (L + 1) % 3, Lm = (L + 2) % 3;
+        const bool lDry = d[L] > 0;
+        const double tp = d[L] / (d[L] - d[Lp]), tm = d[L] / (d[L] - d[Lm]);
+        const Eigen::Vector3d Ep = q[L] + tp * (q[Lp] - q[L]), Em = q[L] + tm * (q[Lm] - q[L]);
+        const double f = tp * tm;  // lone triangle's area / the triangle's
+        const Eigen::Vector3d m = d[L] * (2.0 * q[L] + Ep + Em) / 12.0;
+        // Wet part's sums: lone (L wet), or whole − lone (L dry); less the wet corners' shares.
+        const double sign = lDry ? -1.0 : 1.0;
+        double sd = sign * d[L] * f - sdWet;  // × A/3
+        Eigen::Vector3d sdw = sign * f * 12.0 * m - sdwWet;  // × 1/12, then × A and × (A·u)
+        double d2 = sign * f * Au * d[L] * d[L] / 6.0 - Au * sd2Wet / 12.0;
+        double share = sign * f - wet / 3.0;  // of A (∫ n_y) and of |A| (wetted area)
+        if (lDry) {
+            sd += sdAll;
+            sdw += sdwAll;
+            d2 += Au * (sd2All + sdAll * sdAll) / 12.0;
+            share += 1.0;
         }
         sdw /= 12.0;
         const Eigen::Vector3d wxA = sdw.cross(A);
-        const double Au = A.dot(u);
-        Fx -= sd * A.x() / 3.0;
-        Fy -= sd * A.y() / 3.0;
-        Fz -= sd * A.z() / 3.0;
-        Tx -= wxA.x();
-        Ty -= wxA.y();
-        Tz -= wxA.z();
-        cQx += sdw.x() * Au;
-        cQy += sdw.y() * Au;
-        cQz += sdw.z() * Au;
-        Gx -= sd2 * A.x() / 3.0;
-        Gy -= sd2 * A.y() / 3.0;
-        Gz -= sd2 * A.z() / 3.0;
-        Bx -= wet * A.x() / 3.0;
-        By -= wet * A.y() / 3.0;
-        Bz -= wet * A.z() / 3.0;
-        area -= wet * shares.absArea[tr] / 3.0;
-        addClippedBodyTriangle(in, u, X, Z, clipped);
+        Fx += sd * A.x() / 3.0;
+        Fy += sd * A.y() / 3.0;
+        Fz += sd * A.z() / 3.0;
+        Tx += wxA.x();
+        Ty += wxA.y();
+        Tz += wxA.z();
+        cQx -= sdw.x() * Au;
+        cQy -= sdw.y() * Au;
+        cQz -= sdw.z() * Au;
+        D2 += d2;
+        Bx += share * A.x();
+        By += share * A.y();
+        Bz += share * A.z();
+        area += share * absA;
+        // The wet part's edge on the water, E₊ → E₋ with the wet part on its left as the polygon clip orders it (none
+        // when L is dry with both others on the water: the wet part is that edge alone, and the wet triangle on its
+        // other side adds it).
+        if (!lDry)
+            waterline.add(X.dot(Ep) - xr, Z.dot(Ep) - zr, X.dot(Em) - xr, Z.dot(Em) - zr);
+        else if (!(d[Lp] == 0 && d[Lm] == 0))
+            waterline.add(X.dot(Em) - xr, Z.dot(Em) - zr, X.dot(Ep) - xr, Z.dot(Ep) - zr);
     }
 
-    // Assembly: the shares of the entirely wet triangles, moved to the reference point q_r, plus the clipped pieces.
-    NodeSums acc = clipped;
+    // Assembly: the sums, moved to the reference point q_r.
+    NodeSums acc;
+    acc.waterline = waterline;
     const Eigen::Vector3d F(Fx, Fy, Fz);
     const double V = u.dot(F);
     Eigen::Matrix3d Mv;
@@ -204,7 +252,7 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
     acc.V += V;
     acc.T += Eigen::Vector3d(Tx, Ty, Tz) - qr.cross(F);                              // ∫ D (q − q_r) × n
     acc.Q += Mv * u - Eigen::Vector3d(cQx, cQy, cQz) - qr * V;                       // ∫ (q − q_r) D n_y
-    acc.D2 += u.dot(Eigen::Vector3d(Gx, Gy, Gz)) / 4.0 + u.dot(Eigen::Vector3d(Sx, Sy, Sz)) / 12.0;  // ∫ D² n_y
+    acc.D2 += u.dot(Eigen::Vector3d(Gx, Gy, Gz)) / 4.0 + u.dot(Eigen::Vector3d(Sx, Sy, Sz)) / 12.0 + D2;  // ∫ D² n_y
     acc.Ay += u.dot(Eigen::Vector3d(Bx, By, Bz));
     acc.area += area;
     return toWetIntegrals(acc, R).result(fluidDensity * gravity, r, "vertexHydrostatics");
