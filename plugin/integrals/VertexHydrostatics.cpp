@@ -119,9 +119,9 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
     // Pass 2: the shares of the vertices under water (D ≤ 0), body frame, moments about the body origin.
     double sums[kShareSums] = {};
     sumWetShares(shares, D, nv, sums);  // VertexSharesKernel.h
-    double Fx = sums[kFx], Fy = sums[kFy], Fz = sums[kFz], Tx = sums[kTx], Ty = sums[kTy], Tz = sums[kTz];
-    double Gx = sums[kGx], Gy = sums[kGy], Gz = sums[kGz], Bx = sums[kBx], By = sums[kBy], Bz = sums[kBz];
-    double area = sums[kArea];
+    const double Fx = sums[kFx], Fy = sums[kFy], Fz = sums[kFz], Tx = sums[kTx], Ty = sums[kTy], Tz = sums[kTz];
+    const double Gx = sums[kGx], Gy = sums[kGy], Gz = sums[kGz], Bx = sums[kBx], By = sums[kBy], Bz = sums[kBz];
+    const double area = sums[kArea];
     const double* M = sums + kM;
 
     // Pass 3: triangles. Entirely wet: the (Σ D)² part of ∫ D² n_y. Straddling: listed, then (pass 4) their wet
@@ -149,8 +149,11 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
     //   ∫ D n = D_L A/3,  ∫ D q × n = m × A,  ∫ q D n_y = (A·u) m,  ∫ D² n_y = (A·u) D_L²/6,  m = D_L (2 q_L + E₊ + E₋)/12;
     // the wet part is the lone triangle when L is wet, the whole triangle minus it when L is dry (the same clip as
     // addClippedBodyTriangle, without cutting a polygon; the waterline segment is the wet part's edge on the water).
-    double cQx = 0, cQy = 0, cQz = 0;  // Σ ∫ q D n_y taken back (about the origin): D_i w_i (A_t·u) per wet corner
-    double D2 = 0;                     // ∫ D² n_y of the listed triangles' wet parts, less their wet corners' shares
+    // The listed triangles' wet parts less their wet corners' shares (body frame, about the origin): ∫ D n × 3,
+    // ∫ D q × n × 12, ∫ q D n_y × 12, ∫ D² n_y × 12, ∫ n × 3 and the wetted area × 3.
+    Eigen::Vector3d pF = Eigen::Vector3d::Zero(), pT = Eigen::Vector3d::Zero(), pQ = Eigen::Vector3d::Zero();
+    Eigen::Vector3d pB = Eigen::Vector3d::Zero();
+    double pD2 = 0, pArea = 0;
     WaterlineSums waterline;
     const double xr = X.dot(qr), zr = Z.dot(qr);  // the reference point's world horizontal coordinates, body origin
     for (std::size_t k = 0; k < ns; ++k) {
@@ -175,86 +178,66 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
             dry += d[c] > 0;
         }
         const Eigen::Vector3d sum = q[0] + q[1] + q[2];
-        // The whole triangle's linear terms, per corner: D_i A/3, D_i w_i × A, D_i w_i (A·u), w_i = (q_i + Σq)/12.
+        // The whole triangle's linear terms, per corner: D_i A/3, D_i w_i × A, D_i w_i (A·u), w_i = (q_i + Σq)/12. The
+        // loop has no branch on the signs (which side a corner is on is a coin toss here): flags are multiplied in.
         double sdWet = 0, sd2Wet = 0, wet = 0, sdAll = 0, sd2All = 0;
         Eigen::Vector3d sdwWet = Eigen::Vector3d::Zero(), sdwAll = Eigen::Vector3d::Zero();
         for (int c = 0; c < 3; ++c) {
             const Eigen::Vector3d dw = d[c] * (q[c] + sum);  // D_i w_i × 12
+            const double isWet = d[c] <= 0 ? 1.0 : 0.0;
             sdAll += d[c];
             sd2All += d[c] * d[c];
             sdwAll += dw;
-            if (d[c] <= 0) {
-                sdWet += d[c];
-                sd2Wet += d[c] * d[c];
-                sdwWet += dw;
-                wet += 1;
-            }
+            sdWet += isWet * d[c];
+            sd2Wet += isWet * d[c] * d[c];
+            sdwWet += isWet * dw;
+            wet += isWet;
         }
-        // The lone corner.
-        int L = 0;
-        if (dry == 1 || dry == 2) {
-            const bool loneDry = dry == 1;
-            while ((d[L] > 0) != loneDry) ++L;
-        } else {  // no dry corner: two on the water, L the one below
-            while (d[L] == 0) ++L;
-        }
-        const int Lp = (L + 1) % 3, Lm = (L + 2) % 3;
-        const bool lDry = d[L] > 0;
+        // The lone corner: the only one with (D > 0) == (one dry corner), or with no dry corner the only one with D ≠ 0.
+        const bool oneDry = dry == 1;
+        const auto lone = [&](int c) { return dry == 0 ? d[c] != 0 : (d[c] > 0) == oneDry; };
+        const int L = int(lone(1)) + 2 * int(lone(2));
+        const int Lp = L == 2 ? 0 : L + 1, Lm = L == 0 ? 2 : L - 1;
+        const double lDry = d[L] > 0 ? 1.0 : 0.0;
         const double tp = d[L] / (d[L] - d[Lp]), tm = d[L] / (d[L] - d[Lm]);
         const Eigen::Vector3d Ep = q[L] + tp * (q[Lp] - q[L]), Em = q[L] + tm * (q[Lm] - q[L]);
         const double f = tp * tm;  // lone triangle's area / the triangle's
-        const Eigen::Vector3d m = d[L] * (2.0 * q[L] + Ep + Em) / 12.0;
-        // Wet part's sums: lone (L wet), or whole − lone (L dry); less the wet corners' shares.
-        const double sign = lDry ? -1.0 : 1.0;
-        double sd = sign * d[L] * f - sdWet;  // × A/3
-        Eigen::Vector3d sdw = sign * f * 12.0 * m - sdwWet;  // × 1/12, then × A and × (A·u)
-        double d2 = sign * f * Au * d[L] * d[L] / 6.0 - Au * sd2Wet / 12.0;
-        double share = sign * f - wet / 3.0;  // of A (∫ n_y) and of |A| (wetted area)
-        if (lDry) {
-            sd += sdAll;
-            sdw += sdwAll;
-            d2 += Au * (sd2All + sdAll * sdAll) / 12.0;
-            share += 1.0;
-        }
-        sdw /= 12.0;
-        const Eigen::Vector3d wxA = sdw.cross(A);
-        Fx += sd * A.x() / 3.0;
-        Fy += sd * A.y() / 3.0;
-        Fz += sd * A.z() / 3.0;
-        Tx += wxA.x();
-        Ty += wxA.y();
-        Tz += wxA.z();
-        cQx -= sdw.x() * Au;
-        cQy -= sdw.y() * Au;
-        cQz -= sdw.z() * Au;
-        D2 += d2;
-        Bx += share * A.x();
-        By += share * A.y();
-        Bz += share * A.z();
-        area += share * absA;
-        // The wet part's edge on the water, E₊ → E₋ with the wet part on its left as the polygon clip orders it (none
-        // when L is dry with both others on the water: the wet part is that edge alone, and the wet triangle on its
-        // other side adds it).
-        if (!lDry)
-            waterline.add(X.dot(Ep) - xr, Z.dot(Ep) - zr, X.dot(Em) - xr, Z.dot(Em) - zr);
-        else if (!(d[Lp] == 0 && d[Lm] == 0))
-            waterline.add(X.dot(Em) - xr, Z.dot(Em) - zr, X.dot(Ep) - xr, Z.dot(Ep) - zr);
+        // Wet part's sums: lone (L wet), or whole − lone (L dry); less the wet corners' shares. Kept × 3 or × 12 here
+        // (the divisions once, after the loop).
+        const double sign = 1.0 - 2.0 * lDry;
+        const double sd3 = sign * d[L] * f - sdWet + lDry * sdAll;  // × A/3
+        const Eigen::Vector3d sdw12 = sign * f * d[L] * (2.0 * q[L] + Ep + Em) - sdwWet + lDry * sdwAll;
+        const double share3 = 3.0 * (sign * f + lDry) - wet;  // × A/3 (∫ n_y) and × |A|/3 (wetted area)
+        pF += sd3 * A;
+        pT += sdw12.cross(A);
+        pQ += Au * sdw12;
+        pD2 += Au * (2.0 * sign * f * d[L] * d[L] - sd2Wet + lDry * (sd2All + sdAll * sdAll));
+        pB += share3 * A;
+        pArea += share3 * absA;
+        // The wet part's edge on the water with the wet part on its left, as the polygon clip orders it: E₊ → E₋ when L
+        // is wet, E₋ → E₊ when it is dry; none (a segment of length 0) when L is dry with both others on the water (the
+        // wet part is that edge alone, and the wet triangle on its other side adds it).
+        const double xp = X.dot(Ep) - xr, zp = Z.dot(Ep) - zr, xm = X.dot(Em) - xr, zm = Z.dot(Em) - zr;
+        const bool none = lDry > 0 && d[Lp] == 0 && d[Lm] == 0;
+        const double xs = lDry > 0 ? xm : xp, zs = lDry > 0 ? zm : zp;
+        const double xe = none ? xs : lDry > 0 ? xp : xm, ze = none ? zs : lDry > 0 ? zp : zm;
+        waterline.add(xs, zs, xe, ze);
     }
 
     // Assembly: the sums, moved to the reference point q_r.
     NodeSums acc;
     acc.waterline = waterline;
-    const Eigen::Vector3d F(Fx, Fy, Fz);
+    const Eigen::Vector3d F = Eigen::Vector3d(Fx, Fy, Fz) + pF / 3.0;
     const double V = u.dot(F);
     Eigen::Matrix3d Mv;
     Mv << M[0], M[1], M[2], M[3], M[4], M[5], M[6], M[7], M[8];
-    acc.F += F;
-    acc.V += V;
-    acc.T += Eigen::Vector3d(Tx, Ty, Tz) - qr.cross(F);                              // ∫ D (q − q_r) × n
-    acc.Q += Mv * u - Eigen::Vector3d(cQx, cQy, cQz) - qr * V;                       // ∫ (q − q_r) D n_y
-    acc.D2 += u.dot(Eigen::Vector3d(Gx, Gy, Gz)) / 4.0 + u.dot(Eigen::Vector3d(Sx, Sy, Sz)) / 12.0 + D2;  // ∫ D² n_y
-    acc.Ay += u.dot(Eigen::Vector3d(Bx, By, Bz));
-    acc.area += area;
+    acc.F = F;
+    acc.V = V;
+    acc.T = Eigen::Vector3d(Tx, Ty, Tz) + pT / 12.0 - qr.cross(F);                     // ∫ D (q − q_r) × n
+    acc.Q = Mv * u + pQ / 12.0 - qr * V;                                               // ∫ (q − q_r) D n_y
+    acc.D2 = u.dot(Eigen::Vector3d(Gx, Gy, Gz)) / 4.0 + u.dot(Eigen::Vector3d(Sx, Sy, Sz)) / 12.0 + pD2 / 12.0;  // ∫ D² n_y
+    acc.Ay = u.dot(Eigen::Vector3d(Bx, By, Bz) + pB / 3.0);
+    acc.area = area + pArea / 3.0;
     return toWetIntegrals(acc, R).result(fluidDensity * gravity, r, "vertexHydrostatics");
 }
 
