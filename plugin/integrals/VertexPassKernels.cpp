@@ -48,6 +48,14 @@ __attribute__((target("avx512f"))) std::size_t depthsAvx512(const VertexShares& 
                                                            double high, double* D) {
     return avx512::depthsKernel(s, R, t, g, high, D);
 }
+__attribute__((target("avx2"))) std::size_t heightsAvx2(const WaterPatch::CellGrid& g, const double* x,
+                                                       const double* z, std::size_t n, double* out) {
+    return avx2::heightsKernel(g, x, z, n, out);
+}
+__attribute__((target("avx512f"))) std::size_t heightsAvx512(const WaterPatch::CellGrid& g, const double* x,
+                                                            const double* z, std::size_t n, double* out) {
+    return avx512::heightsKernel(g, x, z, n, out);
+}
 __attribute__((target("avx2"))) std::size_t trianglesAvx2(const VertexShares& s, const double* D, double S[3],
                                                          std::int32_t* list, std::size_t& listed) {
     return avx2::trianglesKernel(s, D, S, list, listed);
@@ -58,7 +66,39 @@ __attribute__((target("avx512f"))) std::size_t trianglesAvx512(const VertexShare
 }
 #endif
 
+/// The interpolant at one point, with WaterPatch::height's operations (the points after the last full vector).
+double interpolateOne(const WaterPatch::CellGrid& g, double x, double z) {
+    const int last = g.nodes - 3;
+    const double lo = 1.0, hi = double(g.nodes - 2);
+    const double uc = std::min(std::max((x - g.x0) * g.invH, lo), hi);
+    const double vc = std::min(std::max((z - g.z0) * g.invH, lo), hi);
+    const int i = std::min(int(uc), last), j = std::min(int(vc), last);
+    const double tu = uc - i, tv = vc - j;
+    const double* C = g.coefficients + 16 * ((j - 1) * last + (i - 1));
+    const double a0 = ((C[12] * tu + C[8]) * tu + C[4]) * tu + C[0];
+    const double a1 = ((C[13] * tu + C[9]) * tu + C[5]) * tu + C[1];
+    const double a2 = ((C[14] * tu + C[10]) * tu + C[6]) * tu + C[2];
+    const double a3 = ((C[15] * tu + C[11]) * tu + C[7]) * tu + C[3];
+    return ((a3 * tv + a2) * tv + a1) * tv + a0;
+}
+
 }  // namespace
+
+void interpolatePatchHeights(const WaterPatch::CellGrid& g, const double* x, const double* z, std::size_t n,
+                             double* out, int lanes) {
+    static const int widest = cpuLanes();
+    const int width = lanes <= 0 ? widest : std::min(lanes, widest);
+    std::size_t done = 0;
+#ifdef BB_VERTEX_PASS_X86
+    if (width >= 8)
+        done = heightsAvx512(g, x, z, n, out);
+    else if (width >= 4)
+        done = heightsAvx2(g, x, z, n, out);
+    else
+#endif
+        done = sse2::heightsKernel(g, x, z, n, out);
+    for (std::size_t k = done; k < n; ++k) out[k] = interpolateOne(g, x[k], z[k]);
+}
 
 bool vertexDepthsOnPatch(const VertexShares& s, const double R[9], const double t[3], const WaterPatch::CellGrid& g,
                          double waterHigh, double* D, int lanes) {
@@ -74,24 +114,13 @@ bool vertexDepthsOnPatch(const VertexShares& s, const double R[9], const double 
 #endif
         done = sse2::depthsKernel(s, R, t, g, waterHigh, D);
     if (done == SIZE_MAX) return false;
-    // The last vertices one by one (WaterPatch::heights' operations).
-    const int last = g.nodes - 3;
-    const double lo = 1.0, hi = double(g.nodes - 2);
+    // The last vertices one by one.
     for (std::size_t v = done; v < s.vertexCount(); ++v) {
         const double qx = s.qx[v], qy = s.qy[v], qz = s.qz[v];
         const double y = R[3] * qx + R[4] * qy + R[5] * qz + t[1];
         const double x = R[0] * qx + R[1] * qy + R[2] * qz + t[0];
         const double z = R[6] * qx + R[7] * qy + R[8] * qz + t[2];
-        const double uc = std::min(std::max((x - g.x0) * g.invH, lo), hi);
-        const double vc = std::min(std::max((z - g.z0) * g.invH, lo), hi);
-        const int i = std::min(int(uc), last), j = std::min(int(vc), last);
-        const double tu = uc - i, tv = vc - j;
-        const double* C = g.coefficients + 16 * ((j - 1) * last + (i - 1));
-        const double a0 = ((C[12] * tu + C[8]) * tu + C[4]) * tu + C[0];
-        const double a1 = ((C[13] * tu + C[9]) * tu + C[5]) * tu + C[1];
-        const double a2 = ((C[14] * tu + C[10]) * tu + C[6]) * tu + C[2];
-        const double a3 = ((C[15] * tu + C[11]) * tu + C[7]) * tu + C[3];
-        const double f = ((a3 * tv + a2) * tv + a1) * tv + a0;
+        const double f = interpolateOne(g, x, z);
         if (!std::isfinite(f)) return false;
         D[v] = y > waterHigh ? std::numeric_limits<double>::infinity() : y - f;
     }

@@ -1,7 +1,7 @@
 #pragma once
 /// @file VertexPassKernels.h
-/// Passes 1 and 3 of the per-vertex exact-mesh hydrostatics on waves (VertexHydrostatics.cpp), several vertices or
-/// triangles per instruction (SSE2, AVX2 or AVX-512 chosen at run time, as sumWetShares in VertexSharesKernel.h):
+/// Passes 1 and 3 of the per-vertex exact-mesh hydrostatics on waves (VertexHydrostatics.cpp), and the water patch's
+/// heights at many points, several vertices, points or triangles per instruction (SSE2, AVX2 or AVX-512 chosen at run time, as sumWetShares in VertexSharesKernel.h):
 ///  - vertexDepthsOnPatch: each vertex's depth D_v = y_v − f(x_v, z_v) with f the water patch's bicubic, the body →
 ///    world transform and the interpolation fused in one pass (no list of the points queried);
 ///  - sumWetTriangles: each triangle's class (entirely wet: its (Σ D_i)² A_t summed; a wet corner but not entirely
@@ -29,6 +29,13 @@ namespace buoyancy {
 /// @return false when an interpolated height was not finite (D is then unusable)
 bool vertexDepthsOnPatch(const VertexShares& shares, const double R[9], const double t[3],
                          const WaterPatch::CellGrid& cells, double waterHigh, double* D, int lanes = 0);
+
+/// The patch's interpolant at the world points (x[k], z[k]), k < n (WaterPatch::heights for many points): the
+/// operations of WaterPatch::height lane by lane (clamped outside the footprint; x, z finite).
+/// @param cells  the patch's cells (WaterPatch::cellGrid)
+/// @param lanes  as for vertexDepthsOnPatch
+void interpolatePatchHeights(const WaterPatch::CellGrid& cells, const double* x, const double* z, std::size_t n,
+                             double* outHeight, int lanes = 0);
 
 /// Pass 3: over every triangle of `shares` with the depths D of its corners,
 ///  - all three corners wet (D ≤ 0) and not two of them exactly on the water: S += (D_0 + D_1 + D_2)² A_t (m⁴);

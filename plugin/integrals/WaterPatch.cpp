@@ -3,6 +3,7 @@
 
 #include "integrals/WaterPatch.h"
 
+#include "integrals/VertexPassKernels.h"
 #include "water/btWaterSurface.h"
 
 #include <algorithm>
@@ -181,26 +182,11 @@ double WaterPatch::height(double x, double z) const {
 }
 
 void WaterPatch::heights(const double* x, const double* z, std::size_t n, double* outHeight) const {
-    // Many points: every cell's coefficients first (a body's vertices cover most of its patch), then one pass
-    // without the per-point stamp check, the index arithmetic of cell() inlined.
-    const int cellsPerRow = m_m - 3;
-    if (n >= std::size_t(cellsPerRow) * std::size_t(cellsPerRow)) {
-        computeAllCells();
-        const double* coef = m_coef.data();
-        const double lo = 1.0, hi = double(m_m - 2), x0 = m_x0, z0 = m_z0, invH = m_invH;
-        const int last = m_m - 3;
-        for (std::size_t k = 0; k < n; ++k) {
-            const double uc = std::min(std::max((x[k] - x0) * invH, lo), hi);
-            const double vc = std::min(std::max((z[k] - z0) * invH, lo), hi);
-            const int i = std::min(int(uc), last), j = std::min(int(vc), last);
-            const double tu = uc - i, tv = vc - j;
-            const double* C = coef + 16 * (std::size_t(j - 1) * std::size_t(cellsPerRow) + std::size_t(i - 1));
-            const double a0 = ((C[12] * tu + C[8]) * tu + C[4]) * tu + C[0];
-            const double a1 = ((C[13] * tu + C[9]) * tu + C[5]) * tu + C[1];
-            const double a2 = ((C[14] * tu + C[10]) * tu + C[6]) * tu + C[2];
-            const double a3 = ((C[15] * tu + C[11]) * tu + C[7]) * tu + C[3];
-            outHeight[k] = ((a3 * tv + a2) * tv + a1) * tv + a0;
-        }
+    // Many points: every cell's coefficients first (a body's vertices cover most of its patch), then several points per
+    // instruction (VertexPassKernels.h); few: cell by cell as asked.
+    const std::size_t cellsPerRow = std::size_t(m_m - 3);
+    if (n >= cellsPerRow * cellsPerRow) {
+        interpolatePatchHeights(cellGrid(), x, z, n, outHeight);
         return;
     }
     for (std::size_t k = 0; k < n; ++k) outHeight[k] = height(x[k], z[k]);

@@ -133,3 +133,35 @@ TEST_CASE("vertex pass kernels: triangle classes and (sum of D)^2 sums at every 
     CHECK(listedTotal > 0);
     CHECK(twoOnWater > 0);  // wet triangles with two corners exactly on the water are listed, not summed
 }
+
+TEST_CASE("vertex pass kernels: the patch's batch heights at every width match its one-point height",
+          "[integrals][vertex]") {
+    const btGerstnerWaterSurface sea({{0.5, 15.0, 0.4, 1.0, 0.7, 0.3}, {0.2, 6.0, 1.0, -0.2, 0.5, 2.0}});
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> u(-1, 1);
+    WaterPatch patch;
+    btWaterQueryCache cache;
+    patch.build(sea, 3.0, -2.0, 1.5, 0.9, 10, cache);
+    int compared = 0;
+    for (std::size_t n : {std::size_t(1), std::size_t(7), std::size_t(64), std::size_t(203)}) {
+        std::vector<double> x(n), z(n), expected(n);
+        for (std::size_t k = 0; k < n; ++k) {
+            x[k] = 3.0 + 2.0 * u(rng);  // some beyond the footprint's half side 1.5: clamped
+            z[k] = -2.0 + 2.0 * u(rng);
+            expected[k] = patch.height(x[k], z[k]);
+        }
+        for (int width : cpuWidths()) {
+            std::vector<double> h(n, std::nan(""));
+            interpolatePatchHeights(patch.cellGrid(), x.data(), z.data(), n, h.data(), width);
+            for (std::size_t k = 0; k < n; ++k) {
+                INFO("points " << n << " width " << width << " point " << k);
+                CHECK(std::abs(h[k] - expected[k]) <= 1e-12 * (1 + std::abs(expected[k])));
+            }
+            ++compared;
+        }
+        std::vector<double> h(n, std::nan(""));
+        patch.heights(x.data(), z.data(), n, h.data());  // the class's batch query, few points or many
+        for (std::size_t k = 0; k < n; ++k) CHECK(std::abs(h[k] - expected[k]) <= 1e-12 * (1 + std::abs(expected[k])));
+    }
+    CHECK(compared >= 4);
+}
