@@ -127,21 +127,20 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     const Eigen::Matrix3d R = pose.linear();
     const Eigen::Vector3d t = pose.translation();
     const double r10 = R(1, 0), r11 = R(1, 1), r12 = R(1, 2);
-    for (std::size_t i = 0; i < n; ++i) {
-        const double x = c.px[i], y = c.py[i], z = c.pz[i];
-        m_dx[i] = R(0, 0) * x + R(0, 1) * y + R(0, 2) * z + t.x();
-        m_dy[i] = r10 * x + r11 * y + r12 * z + t.y();
-        m_dz[i] = R(2, 0) * x + R(2, 1) * y + R(2, 2) * z + t.z();
-        const double ax = c.ax[i], ay = c.ay[i], az = c.az[i];
-        m_dax[i] = R(0, 0) * ax + R(0, 1) * ay + R(0, 2) * az;
-        m_day[i] = r10 * ax + r11 * ay + r12 * az;
-        m_daz[i] = R(2, 0) * ax + R(2, 1) * ay + R(2, 2) * az;
-        // Vertical half extent of the cluster (DESIGN-NOTES 2.4's covariance ramp): sqrt(3 r_yᵀ C r_y), r_y the
-        // world-y row of R; for one fine sample it is sqrt(area)/2 · sqrt(1 − n_y²) (SampleFormulas.h).
-        const double vy = r10 * (r10 * c.cxx[i] + r11 * c.cxy[i] + r12 * c.cxz[i]) +
-                          r11 * (r10 * c.cxy[i] + r11 * c.cyy[i] + r12 * c.cyz[i]) +
-                          r12 * (r10 * c.cxz[i] + r11 * c.cyz[i] + r12 * c.czz[i]);
-        m_dhalf[i] = std::sqrt(3.0 * std::max(vy, 0.0));
+    {
+        // Centres, area vectors and vertical half extents in the world (DESIGN-NOTES 2.4's covariance ramp), several
+        // clusters per instruction (integrals/DragKernel.h).
+        const double Rm[9] = {R(0, 0), R(0, 1), R(0, 2), r10, r11, r12, R(2, 0), R(2, 1), R(2, 2)};
+        const double tv[3] = {t.x(), t.y(), t.z()};
+        buoyancy::DragClusterPose out;
+        out.x = m_dx.data();
+        out.y = m_dy.data();
+        out.z = m_dz.data();
+        out.ax = m_dax.data();
+        out.ay = m_day.data();
+        out.az = m_daz.data();
+        out.halfHeight = m_dhalf.data();
+        buoyancy::poseDragClusters(c, Rm, tv, out);
     }
     double flatH = 0;
     const bool flat = water.isFlat(time, flatH);

@@ -91,6 +91,14 @@ __attribute__((target("avx512f"))) std::size_t runAvx512(const DragClusterBatch&
                                                         double part[10]) {
     return avx512::run(c, m, part);
 }
+__attribute__((target("avx2"))) std::size_t poseAvx2(const DragClusters& c, const double R[9], const double t[3],
+                                                    const DragClusterPose& o) {
+    return avx2::pose(c, R, t, o);
+}
+__attribute__((target("avx512f"))) std::size_t poseAvx512(const DragClusters& c, const double R[9], const double t[3],
+                                                         const DragClusterPose& o) {
+    return avx512::pose(c, R, t, o);
+}
 #endif
 
 }  // namespace
@@ -121,6 +129,34 @@ void accumulateClusterDrag(const DragClusterBatch& c, const DragMotion& m, doubl
         const double C[6] = {c.cxx[i], c.cxy[i], c.cxz[i], c.cyy[i], c.cyz[i], c.czz[i]};
         fm::bb_drag_cluster_accumulate(m.R, C, r, m.v, m.w, u, c.ax[i], c.ay[i], c.az[i], c.area[i], wet, m.kd, m.kf,
                                        m.kl, part);
+    }
+}
+
+void poseDragClusters(const DragClusters& c, const double R[9], const double t[3], const DragClusterPose& o,
+                      int lanes) {
+    std::size_t done = 0;
+    const int width = lanes <= 0 ? dragKernelLanes() : std::min(lanes, dragKernelLanes());
+#ifdef BB_DRAG_X86
+    if (width >= 8)
+        done = poseAvx512(c, R, t, o);
+    else if (width >= 4)
+        done = poseAvx2(c, R, t, o);
+    else
+#endif
+        done = sse2::pose(c, R, t, o);
+    for (std::size_t i = done; i < c.size(); ++i) {  // the last clusters one by one, the same operations
+        const double x = c.px[i], y = c.py[i], z = c.pz[i];
+        o.x[i] = R[0] * x + R[1] * y + R[2] * z + t[0];
+        o.y[i] = R[3] * x + R[4] * y + R[5] * z + t[1];
+        o.z[i] = R[6] * x + R[7] * y + R[8] * z + t[2];
+        const double ax = c.ax[i], ay = c.ay[i], az = c.az[i];
+        o.ax[i] = R[0] * ax + R[1] * ay + R[2] * az;
+        o.ay[i] = R[3] * ax + R[4] * ay + R[5] * az;
+        o.az[i] = R[6] * ax + R[7] * ay + R[8] * az;
+        const double vy = R[3] * (R[3] * c.cxx[i] + R[4] * c.cxy[i] + R[5] * c.cxz[i]) +
+                          R[4] * (R[3] * c.cxy[i] + R[4] * c.cyy[i] + R[5] * c.cyz[i]) +
+                          R[5] * (R[3] * c.cxz[i] + R[4] * c.cyz[i] + R[5] * c.czz[i]);
+        o.halfHeight[i] = std::sqrt(3.0 * std::max(vy, 0.0));
     }
 }
 

@@ -5,6 +5,8 @@
 /// (SSE2, AVX2 or AVX-512, chosen at run time as for the Gerstner queries; plugin/water/VectorMath.h). The same terms
 /// as the scalar formulas up to the order of the additions (tests/integrals/DragKernelTest.cpp).
 
+#include "integrals/DragClusters.h"
+
 #include <cstddef>
 
 namespace buoyancy {
@@ -38,6 +40,21 @@ struct DragMotion {
 /// @param lanes  0: the widest the CPU runs (dragKernelLanes()); 2, 4 or 8 asks for that width (the tests run every
 ///               width the CPU has), a width the CPU lacks falls back to the widest it has below it
 void accumulateClusterDrag(const DragClusterBatch& clusters, const DragMotion& motion, double part[10], int lanes = 0);
+
+/// Where posing the clusters writes (n entries each; DragClusterBatch's world-frame inputs).
+struct DragClusterPose {
+    double *x = nullptr, *y = nullptr, *z = nullptr;     ///< cluster centre, world, m
+    double *ax = nullptr, *ay = nullptr, *az = nullptr;  ///< area vector, world, m²
+    double* halfHeight = nullptr;                        ///< vertical half extent sqrt(3 r_yᵀ C r_y), m
+};
+
+/// Move the clusters to the world: centre R p + t, area vector R a, and the vertical half extent of DESIGN-NOTES 2.4's
+/// covariance ramp, sqrt(3 max(r_yᵀ C r_y, 0)) with r_y the world-y row of R (for one fine sample it is
+/// sqrt(area)/2 · sqrt(1 − n_y²), SampleFormulas.h). Several clusters per instruction, as accumulateClusterDrag.
+/// @param R  body → world rotation, row-major; t  translation, m
+/// @param lanes  as for accumulateClusterDrag
+void poseDragClusters(const DragClusters& clusters, const double R[9], const double t[3], const DragClusterPose& out,
+                      int lanes = 0);
 
 /// Lanes the batch uses on this CPU (8 AVX-512F, 4 AVX2, 2 otherwise); for the tests and the benchmark log.
 int dragKernelLanes();

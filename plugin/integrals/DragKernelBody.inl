@@ -112,3 +112,30 @@ BB_VM_INLINE std::size_t run(const DragClusterBatch& c, const DragMotion& m, dou
     return i;
 }
 
+
+/// The clusters [0, n − n mod N) moved to the world (poseDragClusters); returns the first cluster not done.
+BB_VM_INLINE std::size_t pose(const DragClusters& c, const double R[9], const double t[3], const DragClusterPose& o) {
+    constexpr int N = Traits<V>::N;
+    const std::size_t n = c.size();
+    const V r00 = splat<V>(R[0]), r01 = splat<V>(R[1]), r02 = splat<V>(R[2]);
+    const V r10 = splat<V>(R[3]), r11 = splat<V>(R[4]), r12 = splat<V>(R[5]);
+    const V r20 = splat<V>(R[6]), r21 = splat<V>(R[7]), r22 = splat<V>(R[8]);
+    const V tx = splat<V>(t[0]), ty = splat<V>(t[1]), tz = splat<V>(t[2]), three = splat<V>(3.0), zero = V{};
+    std::size_t i = 0;
+    for (; i + N <= n; i += N) {
+        const V x = load<V>(c.px.data() + i), y = load<V>(c.py.data() + i), z = load<V>(c.pz.data() + i);
+        store<V>(o.x + i, r00 * x + r01 * y + r02 * z + tx);
+        store<V>(o.y + i, r10 * x + r11 * y + r12 * z + ty);
+        store<V>(o.z + i, r20 * x + r21 * y + r22 * z + tz);
+        const V ax = load<V>(c.ax.data() + i), ay = load<V>(c.ay.data() + i), az = load<V>(c.az.data() + i);
+        store<V>(o.ax + i, r00 * ax + r01 * ay + r02 * az);
+        store<V>(o.ay + i, r10 * ax + r11 * ay + r12 * az);
+        store<V>(o.az + i, r20 * ax + r21 * ay + r22 * az);
+        const V cxx = load<V>(c.cxx.data() + i), cxy = load<V>(c.cxy.data() + i), cxz = load<V>(c.cxz.data() + i);
+        const V cyy = load<V>(c.cyy.data() + i), cyz = load<V>(c.cyz.data() + i), czz = load<V>(c.czz.data() + i);
+        const V vy = r10 * (r10 * cxx + r11 * cxy + r12 * cxz) + r11 * (r10 * cxy + r11 * cyy + r12 * cyz) +
+                     r12 * (r10 * cxz + r11 * cyz + r12 * czz);
+        store<V>(o.halfHeight + i, vsqrt(three * max<V>(vy, zero)));
+    }
+    return i;
+}

@@ -7,6 +7,7 @@
 #include "integrals/SampleFormulas.h"
 #include "oracles/FloatingPointTraps.h"
 
+#include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
@@ -191,4 +192,69 @@ TEST_CASE("drag kernel: a fully wet sphere of flat samples gets ½ ρ C_d π R²
     CHECK(std::abs(part[1]) < 1e-9 * expected);
     CHECK(std::abs(part[2]) < 1e-9 * expected);
     CHECK(part[9] == Approx(4 * M_PI * R * R).epsilon(1e-12));  // every sample wet: the whole area
+}
+
+TEST_CASE("drag kernel: posing the clusters at every width matches the rotation written out", "[integrals][drag]") {
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<int> widths = {2};
+    if (dragKernelLanes() >= 4) widths.push_back(4);
+    if (dragKernelLanes() >= 8) widths.push_back(8);
+    int compared = 0;
+    for (std::size_t n : {std::size_t(1), std::size_t(13), std::size_t(64)}) {
+        DragClusters c;
+        for (auto* v : {&c.px, &c.py, &c.pz, &c.ax, &c.ay, &c.az, &c.area, &c.cxx, &c.cxy, &c.cxz, &c.cyy, &c.cyz, &c.czz})
+            v->resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            c.px[i] = u(rng);
+            c.py[i] = u(rng);
+            c.pz[i] = u(rng);
+            c.ax[i] = u(rng);
+            c.ay[i] = u(rng);
+            c.az[i] = u(rng);
+            // A covariance: G Gᵀ of a random G (positive semidefinite); the last cluster has none (a flat point).
+            Eigen::Matrix3d G;
+            for (int r = 0; r < 3; ++r)
+                for (int k = 0; k < 3; ++k) G(r, k) = 0.3 * u(rng);
+            if (i + 1 == n) G.setZero();
+            const Eigen::Matrix3d C = G * G.transpose();
+            c.cxx[i] = C(0, 0);
+            c.cxy[i] = C(0, 1);
+            c.cxz[i] = C(0, 2);
+            c.cyy[i] = C(1, 1);
+            c.cyz[i] = C(1, 2);
+            c.czz[i] = C(2, 2);
+        }
+        const Eigen::Matrix3d R =
+            Eigen::AngleAxisd(2 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+        const Eigen::Vector3d t(5 * u(rng), 5 * u(rng), 5 * u(rng));
+        const double Rm[9] = {R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2)};
+        const double tv[3] = {t.x(), t.y(), t.z()};
+        for (int width : widths) {
+            std::vector<double> x(n), y(n), z(n), ax(n), ay(n), az(n), half(n);
+            DragClusterPose out;
+            out.x = x.data();
+            out.y = y.data();
+            out.z = z.data();
+            out.ax = ax.data();
+            out.ay = ay.data();
+            out.az = az.data();
+            out.halfHeight = half.data();
+            poseDragClusters(c, Rm, tv, out, width);
+            for (std::size_t i = 0; i < n; ++i) {
+                INFO("clusters " << n << " width " << width << " cluster " << i);
+                const Eigen::Vector3d p = R * Eigen::Vector3d(c.px[i], c.py[i], c.pz[i]) + t;
+                const Eigen::Vector3d a = R * Eigen::Vector3d(c.ax[i], c.ay[i], c.az[i]);
+                Eigen::Matrix3d C;
+                C << c.cxx[i], c.cxy[i], c.cxz[i], c.cxy[i], c.cyy[i], c.cyz[i], c.cxz[i], c.cyz[i], c.czz[i];
+                // The world covariance R C Rᵀ: its yy entry is the vertical variance.
+                const double varY = (R * C * R.transpose())(1, 1);
+                CHECK((Eigen::Vector3d(x[i], y[i], z[i]) - p).norm() <= 1e-13 * (1 + p.norm()));
+                CHECK((Eigen::Vector3d(ax[i], ay[i], az[i]) - a).norm() <= 1e-13 * (1 + a.norm()));
+                CHECK(std::abs(half[i] - std::sqrt(3.0 * std::max(varY, 0.0))) <= 1e-12);
+            }
+            ++compared;
+        }
+    }
+    CHECK(compared >= 3);
 }
