@@ -9,8 +9,9 @@
 ///     per instruction: SSE2, AVX2 or AVX-512 chosen at run time, VertexSharesKernel.h);
 ///  3. each triangle: all corners under water → its ∫ D² n_y cross term (A_t (Σ D_i)²); corners on both sides (or an
 ///     edge exactly on the water) → listed (several triangles per instruction, VertexPassKernels.h);
-///  4. the straddling triangles listed in pass 3: the shares their wet corners added are taken back and they are
-///     clipped exactly (BodyFrameSums.h).
+///  4. the straddling triangles listed in pass 3: the shares their wet corners added are taken back and their exact
+///     wet parts added in closed form (the clip of BodyFrameSums.h without cutting polygons; several triangles per
+///     instruction, VertexPassKernels.h).
 /// Triangles entirely above the water cost one test each.
 
 #include "integrals/BodyFrameSums.h"
@@ -124,16 +125,12 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
     const double area = sums[kArea];
     const double* M = sums + kM;
 
-    // Pass 3: triangles. Entirely wet: the (Σ D)² part of ∫ D² n_y. Straddling: listed, then (pass 4) their wet
-    // corners' shares are taken back and they are clipped (the exact wetted part goes into `clipped`, positions
-    // relative to q_r). Kept apart so that this loop, which sees every triangle, carries few values.
+    // Pass 3: triangles. Entirely wet: the (Σ D)² part of ∫ D² n_y. Straddling: listed for pass 4. Kept apart so that
+    // this loop, which sees every triangle, carries few values.
     double S[3] = {0, 0, 0};  // Σ_wet A_t (Σ D_i)²
     const std::int32_t* c0 = shares.corner[0].data();
     const std::int32_t* c1 = shares.corner[1].data();
     const std::int32_t* c2 = shares.corner[2].data();
-    const double* ax = shares.ax.data();
-    const double* ay = shares.ay.data();
-    const double* az = shares.az.data();
     const std::int32_t* straddling = sc.straddling.data();
     // Wet with an edge exactly on the water (two corners at D = 0, the third below): listed like the straddling ones,
     // so that the edge reaches the waterplane moments (BodyFrameSums.h); the sums are the same. Several triangles per
@@ -149,80 +146,24 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
     //   ∫ D n = D_L A/3,  ∫ D q × n = m × A,  ∫ q D n_y = (A·u) m,  ∫ D² n_y = (A·u) D_L²/6,  m = D_L (2 q_L + E₊ + E₋)/12;
     // the wet part is the lone triangle when L is wet, the whole triangle minus it when L is dry (the same clip as
     // addClippedBodyTriangle, without cutting a polygon; the waterline segment is the wet part's edge on the water).
-    // The listed triangles' wet parts less their wet corners' shares (body frame, about the origin): ∫ D n × 3,
-    // ∫ D q × n × 12, ∫ q D n_y × 12, ∫ D² n_y × 12, ∫ n × 3 and the wetted area × 3.
-    Eigen::Vector3d pF = Eigen::Vector3d::Zero(), pT = Eigen::Vector3d::Zero(), pQ = Eigen::Vector3d::Zero();
-    Eigen::Vector3d pB = Eigen::Vector3d::Zero();
-    double pD2 = 0, pArea = 0;
-    WaterlineSums waterline;
-    const double xr = X.dot(qr), zr = Z.dot(qr);  // the reference point's world horizontal coordinates, body origin
+    // Several triangles per instruction (VertexPassKernels.h), after the missing depths of their dry corners.
     for (std::size_t k = 0; k < ns; ++k) {
         const std::size_t tr = std::size_t(straddling[k]);
-        const std::int32_t idx[3] = {c0[tr], c1[tr], c2[tr]};
-        const Eigen::Vector3d A(ax[tr], ay[tr], az[tr]);
-        const double Au = A.dot(u), absA = shares.absArea[tr];
-        Eigen::Vector3d q[3];
-        double d[3];
-        int dry = 0;
-        for (int c = 0; c < 3; ++c) {
-            const std::int32_t v = idx[c];
-            q[c] = Eigen::Vector3d(qx[v], qy[v], qz[v]);
-            d[c] = D[v];
-            if (d[c] == kNotComputed) {  // dry corner without its height: needed for the crossing point
-                const double x = r00 * q[c].x() + r01 * q[c].y() + r02 * q[c].z() + t.x();
-                const double z = r20 * q[c].x() + r21 * q[c].y() + r22 * q[c].z() + t.z();
-                const double y = r10 * q[c].x() + r11 * q[c].y() + r12 * q[c].z() + t.y();
-                d[c] = y - patch->height(x, z);
-                D[v] = d[c];  // (> 0: above every value of the interpolant)
-            }
-            dry += d[c] > 0;
+        for (const std::int32_t v : {c0[tr], c1[tr], c2[tr]}) {
+            if (D[v] != kNotComputed) continue;  // dry corner without its height: needed for the crossing point
+            const double x = r00 * qx[v] + r01 * qy[v] + r02 * qz[v] + t.x();
+            const double z = r20 * qx[v] + r21 * qy[v] + r22 * qz[v] + t.z();
+            const double y = r10 * qx[v] + r11 * qy[v] + r12 * qz[v] + t.y();
+            D[v] = y - patch->height(x, z);  // (> 0: above every value of the interpolant)
         }
-        const Eigen::Vector3d sum = q[0] + q[1] + q[2];
-        // The whole triangle's linear terms, per corner: D_i A/3, D_i w_i × A, D_i w_i (A·u), w_i = (q_i + Σq)/12. The
-        // loop has no branch on the signs (which side a corner is on is a coin toss here): flags are multiplied in.
-        double sdWet = 0, sd2Wet = 0, wet = 0, sdAll = 0, sd2All = 0;
-        Eigen::Vector3d sdwWet = Eigen::Vector3d::Zero(), sdwAll = Eigen::Vector3d::Zero();
-        for (int c = 0; c < 3; ++c) {
-            const Eigen::Vector3d dw = d[c] * (q[c] + sum);  // D_i w_i × 12
-            const double isWet = d[c] <= 0 ? 1.0 : 0.0;
-            sdAll += d[c];
-            sd2All += d[c] * d[c];
-            sdwAll += dw;
-            sdWet += isWet * d[c];
-            sd2Wet += isWet * d[c] * d[c];
-            sdwWet += isWet * dw;
-            wet += isWet;
-        }
-        // The lone corner: the only one with (D > 0) == (one dry corner), or with no dry corner the only one with D ≠ 0.
-        const bool oneDry = dry == 1;
-        const auto lone = [&](int c) { return dry == 0 ? d[c] != 0 : (d[c] > 0) == oneDry; };
-        const int L = int(lone(1)) + 2 * int(lone(2));
-        const int Lp = L == 2 ? 0 : L + 1, Lm = L == 0 ? 2 : L - 1;
-        const double lDry = d[L] > 0 ? 1.0 : 0.0;
-        const double tp = d[L] / (d[L] - d[Lp]), tm = d[L] / (d[L] - d[Lm]);
-        const Eigen::Vector3d Ep = q[L] + tp * (q[Lp] - q[L]), Em = q[L] + tm * (q[Lm] - q[L]);
-        const double f = tp * tm;  // lone triangle's area / the triangle's
-        // Wet part's sums: lone (L wet), or whole − lone (L dry); less the wet corners' shares. Kept × 3 or × 12 here
-        // (the divisions once, after the loop).
-        const double sign = 1.0 - 2.0 * lDry;
-        const double sd3 = sign * d[L] * f - sdWet + lDry * sdAll;  // × A/3
-        const Eigen::Vector3d sdw12 = sign * f * d[L] * (2.0 * q[L] + Ep + Em) - sdwWet + lDry * sdwAll;
-        const double share3 = 3.0 * (sign * f + lDry) - wet;  // × A/3 (∫ n_y) and × |A|/3 (wetted area)
-        pF += sd3 * A;
-        pT += sdw12.cross(A);
-        pQ += Au * sdw12;
-        pD2 += Au * (2.0 * sign * f * d[L] * d[L] - sd2Wet + lDry * (sd2All + sdAll * sdAll));
-        pB += share3 * A;
-        pArea += share3 * absA;
-        // The wet part's edge on the water with the wet part on its left, as the polygon clip orders it: E₊ → E₋ when L
-        // is wet, E₋ → E₊ when it is dry; none (a segment of length 0) when L is dry with both others on the water (the
-        // wet part is that edge alone, and the wet triangle on its other side adds it).
-        const double xp = X.dot(Ep) - xr, zp = Z.dot(Ep) - zr, xm = X.dot(Em) - xr, zm = Z.dot(Em) - zr;
-        const bool none = lDry > 0 && d[Lp] == 0 && d[Lm] == 0;
-        const double xs = lDry > 0 ? xm : xp, zs = lDry > 0 ? zm : zp;
-        const double xe = none ? xs : lDry > 0 ? xp : xm, ze = none ? zs : lDry > 0 ? zp : zm;
-        waterline.add(xs, zs, xe, ze);
     }
+    StraddlingSums p;
+    const double uv[3] = {u.x(), u.y(), u.z()}, Xv[3] = {X.x(), X.y(), X.z()}, Zv[3] = {Z.x(), Z.y(), Z.z()};
+    sumStraddlingTriangles(shares, D, straddling, ns, uv, Xv, Zv, X.dot(qr), Z.dot(qr), p);
+    const Eigen::Vector3d pF(p.F[0], p.F[1], p.F[2]), pT(p.T[0], p.T[1], p.T[2]), pQ(p.Q[0], p.Q[1], p.Q[2]);
+    const Eigen::Vector3d pB(p.B[0], p.B[1], p.B[2]);
+    const double pD2 = p.D2, pArea = p.area;
+    const WaterlineSums& waterline = p.waterline;
 
     // Assembly: the sums, moved to the reference point q_r.
     NodeSums acc;

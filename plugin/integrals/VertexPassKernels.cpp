@@ -56,6 +56,17 @@ __attribute__((target("avx512f"))) std::size_t heightsAvx512(const WaterPatch::C
                                                             const double* z, std::size_t n, double* out) {
     return avx512::heightsKernel(g, x, z, n, out);
 }
+__attribute__((target("avx2"))) void straddlingAvx2(const VertexShares& s, const double* D, const std::int32_t* list,
+                                                    std::size_t count, const double u[3], const double X[3],
+                                                    const double Z[3], double xr, double zr, StraddlingSums& out) {
+    avx2::straddlingKernel(s, D, list, count, u, X, Z, xr, zr, out);
+}
+__attribute__((target("avx512f"))) void straddlingAvx512(const VertexShares& s, const double* D,
+                                                         const std::int32_t* list, std::size_t count, const double u[3],
+                                                         const double X[3], const double Z[3], double xr, double zr,
+                                                         StraddlingSums& out) {
+    avx512::straddlingKernel(s, D, list, count, u, X, Z, xr, zr, out);
+}
 __attribute__((target("avx2"))) std::size_t trianglesAvx2(const VertexShares& s, const double* D, double S[3],
                                                          std::int32_t* list, std::size_t& listed) {
     return avx2::trianglesKernel(s, D, S, list, listed);
@@ -153,6 +164,21 @@ std::size_t sumWetTriangles(const VertexShares& s, const double* D, double S[3],
         }
     }
     return listed;
+}
+
+void sumStraddlingTriangles(const VertexShares& s, const double* D, const std::int32_t* list, std::size_t count,
+                            const double u[3], const double X[3], const double Z[3], double xr, double zr,
+                            StraddlingSums& out, int lanes) {
+    static const int widest = cpuLanes();
+    const int width = lanes <= 0 ? widest : std::min(lanes, widest);
+#ifdef BB_VERTEX_PASS_X86
+    if (width >= 8)
+        straddlingAvx512(s, D, list, count, u, X, Z, xr, zr, out);
+    else if (width >= 4)
+        straddlingAvx2(s, D, list, count, u, X, Z, xr, zr, out);
+    else
+#endif
+        sse2::straddlingKernel(s, D, list, count, u, X, Z, xr, zr, out);
 }
 
 }  // namespace buoyancy

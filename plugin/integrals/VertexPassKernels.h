@@ -1,6 +1,6 @@
 #pragma once
 /// @file VertexPassKernels.h
-/// Passes 1 and 3 of the per-vertex exact-mesh hydrostatics on waves (VertexHydrostatics.cpp), and the water patch's
+/// Passes 1, 3 and 4 of the per-vertex exact-mesh hydrostatics on waves (VertexHydrostatics.cpp), and the water patch's
 /// heights at many points, several vertices, points or triangles per instruction (SSE2, AVX2 or AVX-512 chosen at run time, as sumWetShares in VertexSharesKernel.h):
 ///  - vertexDepthsOnPatch: each vertex's depth D_v = y_v − f(x_v, z_v) with f the water patch's bicubic, the body →
 ///    world transform and the interpolation fused in one pass (no list of the points queried);
@@ -13,6 +13,7 @@
 
 #include "integrals/VertexShares.h"
 #include "integrals/WaterPatch.h"
+#include "integrals/WetTriangleIntegrals.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -45,5 +46,28 @@ void interpolatePatchHeights(const WaterPatch::CellGrid& cells, const double* x,
 /// @return the number of triangles listed
 std::size_t sumWetTriangles(const VertexShares& shares, const double* D, double S[3], std::int32_t* straddling,
                             int lanes = 0);
+
+/// What pass 4 adds for the listed triangles: their wet parts less the shares pass 2 added for their wet corners, body
+/// frame, about the body origin, each sum scaled as noted (the divisions are left to the caller), and the waterline's
+/// segments (world horizontal coordinates relative to the reference point).
+struct StraddlingSums {
+    double F[3] = {0, 0, 0};  ///< ∫ D n × 3, m³
+    double T[3] = {0, 0, 0};  ///< ∫ D q × n × 12, m⁴
+    double Q[3] = {0, 0, 0};  ///< ∫ q D n_y × 12, m⁴
+    double B[3] = {0, 0, 0};  ///< ∫ n × 3, m²
+    double D2 = 0;            ///< ∫ D² n_y × 12, m⁴
+    double area = 0;          ///< wetted area × 3, m²
+    WaterlineSums waterline;  ///< the wet parts' edges on the water
+};
+
+/// Pass 4: the triangles list[0, count) (from sumWetTriangles) in closed form (the derivation is in
+/// VertexHydrostatics.cpp), several per instruction, added to `out`.
+/// @param D  depths with every corner of a listed triangle finite
+/// @param u  world up in the body frame; X, Z  world x and z in the body frame (the rows of R)
+/// @param xr, zr  X·q_r and Z·q_r, the reference point's world horizontal coordinates about the body origin, m
+/// @param lanes  as for vertexDepthsOnPatch
+void sumStraddlingTriangles(const VertexShares& shares, const double* D, const std::int32_t* list, std::size_t count,
+                            const double u[3], const double X[3], const double Z[3], double xr, double zr,
+                            StraddlingSums& out, int lanes = 0);
 
 }  // namespace buoyancy

@@ -115,3 +115,125 @@ BB_VM_INLINE std::size_t trianglesKernel(const VertexShares& s, const double* D,
     }
     return i;
 }
+
+/// v1 where lone[1], v2 where lone[2], v0 elsewhere (the value at the lone corner L).
+BB_VM_INLINE V pickLone(const Mask<V> lone[3], const V& v0, const V& v1, const V& v2) {
+    return select<V>(lone[1], v1, select<V>(lone[2], v2, v0));
+}
+
+/// Pass 4 for the listed triangles list[0, count) (sumStraddlingTriangles), N at a time: a lane past the end repeats
+/// the last triangle with weight 0. The formulas of sumStraddlingTriangles lane by lane, the lone corner chosen by
+/// masks.
+BB_VM_INLINE void straddlingKernel(const VertexShares& s, const double* D, const std::int32_t* list, std::size_t count,
+                                   const double u[3], const double X[3], const double Z[3], double xr, double zr,
+                                   StraddlingSums& out) {
+    constexpr int N = Traits<V>::N;
+    const V zero = V{}, one = splat<V>(1.0), two = splat<V>(2.0), three = splat<V>(3.0);
+    const V ux = splat<V>(u[0]), uy = splat<V>(u[1]), uz = splat<V>(u[2]);
+    const V Xx = splat<V>(X[0]), Xy = splat<V>(X[1]), Xz = splat<V>(X[2]);
+    const V Zx = splat<V>(Z[0]), Zy = splat<V>(Z[1]), Zz = splat<V>(Z[2]);
+    const V xrv = splat<V>(xr), zrv = splat<V>(zr);
+    V F[3] = {zero, zero, zero}, T[3] = {zero, zero, zero}, Q[3] = {zero, zero, zero}, B[3] = {zero, zero, zero};
+    V d2Sum = zero, areaSum = zero, wl[6] = {zero, zero, zero, zero, zero, zero};
+    for (std::size_t k = 0; k < count; k += N) {
+        std::int32_t tri[N], corner[3][N];
+        V weight;
+        for (int l = 0; l < N; ++l) {
+            const bool inside = k + std::size_t(l) < count;
+            tri[l] = list[inside ? k + std::size_t(l) : count - 1];
+            weight[l] = inside ? 1.0 : 0.0;
+            for (int c = 0; c < 3; ++c) corner[c][l] = s.corner[c][std::size_t(tri[l])];
+        }
+        V q[3][3], d[3];  // q[corner][axis]
+        for (int c = 0; c < 3; ++c) {
+            q[c][0] = gatherLanes(s.qx.data(), corner[c]);
+            q[c][1] = gatherLanes(s.qy.data(), corner[c]);
+            q[c][2] = gatherLanes(s.qz.data(), corner[c]);
+            d[c] = gatherLanes(D, corner[c]);
+        }
+        const V A[3] = {gatherLanes(s.ax.data(), tri), gatherLanes(s.ay.data(), tri), gatherLanes(s.az.data(), tri)};
+        const V absA = gatherLanes(s.absArea.data(), tri);
+        const V Au = A[0] * ux + A[1] * uy + A[2] * uz;
+        const V sum[3] = {q[0][0] + q[1][0] + q[2][0], q[0][1] + q[1][1] + q[2][1], q[0][2] + q[1][2] + q[2][2]};
+        V sdWet = zero, sd2Wet = zero, wet = zero, sdAll = zero, sd2All = zero, dry = zero;
+        V sdwWet[3] = {zero, zero, zero}, sdwAll[3] = {zero, zero, zero};
+        for (int c = 0; c < 3; ++c) {
+            const V isWet = select<V>(mask<V>(d[c] <= zero), one, zero);
+            dry += one - isWet;
+            sdAll += d[c];
+            sd2All += d[c] * d[c];
+            sdWet += isWet * d[c];
+            sd2Wet += isWet * d[c] * d[c];
+            wet += isWet;
+            for (int a = 0; a < 3; ++a) {
+                const V dw = d[c] * (q[c][a] + sum[a]);
+                sdwAll[a] += dw;
+                sdwWet[a] += isWet * dw;
+            }
+        }
+        // The lone corner L (masks), and its successor L+1 and predecessor L−1 in winding order.
+        const Mask<V> noDry = mask<V>(dry == zero), oneDry = mask<V>(dry == one);
+        Mask<V> lone[3];
+        for (int c = 0; c < 3; ++c) {
+            const Mask<V> sideMatches = ~(mask<V>(d[c] > zero) ^ oneDry);
+            lone[c] = (noDry & mask<V>(d[c] != zero)) | (~noDry & sideMatches);
+        }
+        const V dL = pickLone(lone, d[0], d[1], d[2]), dP = pickLone(lone, d[1], d[2], d[0]);
+        const V dM = pickLone(lone, d[2], d[0], d[1]);
+        V qL[3], Ep[3], Em[3];
+        const V lDry = select<V>(mask<V>(dL > zero), one, zero);
+        const V tp = dL / (dL - dP), tm = dL / (dL - dM);
+        for (int a = 0; a < 3; ++a) {
+            qL[a] = pickLone(lone, q[0][a], q[1][a], q[2][a]);
+            const V qP = pickLone(lone, q[1][a], q[2][a], q[0][a]), qM = pickLone(lone, q[2][a], q[0][a], q[1][a]);
+            Ep[a] = qL[a] + tp * (qP - qL[a]);
+            Em[a] = qL[a] + tm * (qM - qL[a]);
+        }
+        const V f = tp * tm, sign = one - two * lDry;
+        const V sd3 = weight * (sign * dL * f - sdWet + lDry * sdAll);
+        V sdw12[3];
+        for (int a = 0; a < 3; ++a)
+            sdw12[a] = weight * (sign * f * dL * (two * qL[a] + Ep[a] + Em[a]) - sdwWet[a] + lDry * sdwAll[a]);
+        const V share3 = weight * (three * (sign * f + lDry) - wet);
+        for (int a = 0; a < 3; ++a) {
+            F[a] += sd3 * A[a];
+            Q[a] += Au * sdw12[a];
+            B[a] += share3 * A[a];
+        }
+        T[0] += sdw12[1] * A[2] - sdw12[2] * A[1];
+        T[1] += sdw12[2] * A[0] - sdw12[0] * A[2];
+        T[2] += sdw12[0] * A[1] - sdw12[1] * A[0];
+        d2Sum += weight * Au * (two * sign * f * dL * dL - sd2Wet + lDry * (sd2All + sdAll * sdAll));
+        areaSum += share3 * absA;
+        // The waterline segment (WaterlineSums::add), start → end.
+        const V xp = Xx * Ep[0] + Xy * Ep[1] + Xz * Ep[2] - xrv, zp = Zx * Ep[0] + Zy * Ep[1] + Zz * Ep[2] - zrv;
+        const V xm = Xx * Em[0] + Xy * Em[1] + Xz * Em[2] - xrv, zm = Zx * Em[0] + Zy * Em[1] + Zz * Em[2] - zrv;
+        const Mask<V> isDry = mask<V>(lDry > zero);
+        const Mask<V> none = isDry & mask<V>(dP == zero) & mask<V>(dM == zero);
+        const V xe = select<V>(isDry, xm, xp), ze = select<V>(isDry, zm, zp);
+        const V xn = select<V>(none, xe, select<V>(isDry, xp, xm)), zn = select<V>(none, ze, select<V>(isDry, zp, zm));
+        const V c = weight * (zn * xe - xn * ze);
+        wl[0] += c;
+        wl[1] += (xn + xe) * c;
+        wl[2] += (zn + ze) * c;
+        wl[3] += (xn * xn + xn * xe + xe * xe) * c;
+        wl[4] += (two * xn * zn + xn * ze + xe * zn + two * xe * ze) * c;
+        wl[5] += (zn * zn + zn * ze + ze * ze) * c;
+    }
+    for (int l = 0; l < N; ++l) {
+        for (int a = 0; a < 3; ++a) {
+            out.F[a] += F[a][l];
+            out.T[a] += T[a][l];
+            out.Q[a] += Q[a][l];
+            out.B[a] += B[a][l];
+        }
+        out.D2 += d2Sum[l];
+        out.area += areaSum[l];
+        out.waterline.area2 += wl[0][l];
+        out.waterline.x6 += wl[1][l];
+        out.waterline.z6 += wl[2][l];
+        out.waterline.xx12 += wl[3][l];
+        out.waterline.xz24 += wl[4][l];
+        out.waterline.zz12 += wl[5][l];
+    }
+}
