@@ -1,7 +1,9 @@
-// Passes 1 and 3 of the per-vertex hydrostatics (plugin/integrals/VertexPassKernels): every SIMD width this CPU runs
-// against plain loops written here. Pass 1: each vertex moved by the pose and its height asked of WaterPatch::height one
+// Passes 1, 3 and 4 of the per-vertex hydrostatics (plugin/integrals/VertexPassKernels): every SIMD width this CPU
+// runs against plain loops written here, and pass 4 against clipping each listed triangle as a polygon
+// (BodyFrameSums.h's addClippedBodyTriangle) less the corner shares of VertexShares.h. Pass 1: each vertex moved by the pose and its height asked of WaterPatch::height one
 // by one (vertices outside the patch's footprint included: clamped cells). Pass 3: the triangle classes from depths
 // that are negative, zero (two and three corners on the water), positive and +∞, triangle counts that leave a tail.
+#include "integrals/BodyFrameSums.h"
 #include "integrals/VertexPassKernels.h"
 #include "integrals/VertexShares.h"
 #include "integrals/VertexSharesKernel.h"
@@ -164,4 +166,88 @@ TEST_CASE("vertex pass kernels: the patch's batch heights at every width match i
         for (std::size_t k = 0; k < n; ++k) CHECK(std::abs(h[k] - expected[k]) <= 1e-12 * (1 + std::abs(expected[k])));
     }
     CHECK(compared >= 4);
+}
+
+TEST_CASE("vertex pass kernels: the straddling triangles at every width match clipping them one by one",
+          "[integrals][vertex]") {
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> u01(-1, 1);
+    int compared = 0;
+    std::size_t listedTotal = 0;
+    for (const OracleMesh& m : {oracleBox(1, 0.5, 0.8), oracleSphere(0.5, 13, 7), oracleTorus(0.6, 0.2, 17, 9)}) {
+        const TriangleMesh mesh = toTriangleMesh(m);
+        const VertexShares s = buildVertexShares(mesh);
+        for (int trial = 0; trial < 5; ++trial) {
+            const Eigen::Matrix3d R =
+                Eigen::AngleAxisd(3 * u01(rng), Eigen::Vector3d(u01(rng), u01(rng), u01(rng)).normalized())
+                    .toRotationMatrix();
+            const Eigen::Vector3d up = R.row(1).transpose(), X = R.row(0).transpose(), Z = R.row(2).transpose();
+            // Depths of a tilted plane through the body, some corners exactly on it.
+            const double level = 0.2 * u01(rng);
+            std::vector<double> D(s.vertexCount());
+            for (std::size_t v = 0; v < D.size(); ++v) {
+                D[v] = up.dot(Eigen::Vector3d(s.qx[v], s.qy[v], s.qz[v])) - level + 0.05 * u01(rng);
+                if ((v + std::size_t(trial)) % 11 == 0) D[v] = 0.0;
+            }
+            double S[3] = {0, 0, 0};
+            std::vector<std::int32_t> list(s.triangleCount());
+            const std::size_t n = sumWetTriangles(s, D.data(), S, list.data());
+            listedTotal += n;
+            // Expected: each listed triangle clipped as a polygon (BodyFrameSums.h, about the body origin) less the
+            // corner shares of VertexShares.h for its wet corners, in the kernel's scales.
+            NodeSums clip;
+            double shareF[3] = {0, 0, 0}, shareT[3] = {0, 0, 0}, shareQ[3] = {0, 0, 0}, shareD2 = 0, shareAy = 0,
+                   shareArea = 0;
+            for (std::size_t k = 0; k < n; ++k) {
+                const std::size_t t = std::size_t(list[k]);
+                BodyCorner in[3];
+                Eigen::Vector3d q[3];
+                for (int c = 0; c < 3; ++c) {
+                    const std::size_t v = std::size_t(s.corner[c][t]);
+                    q[c] = Eigen::Vector3d(s.qx[v], s.qy[v], s.qz[v]);
+                    in[c] = BodyCorner{q[c], D[v]};
+                }
+                addClippedBodyTriangle(in, up, X, Z, clip);
+                const Eigen::Vector3d A(s.ax[t], s.ay[t], s.az[t]), sum = q[0] + q[1] + q[2];
+                for (int c = 0; c < 3; ++c) {
+                    const double d = in[c].D;
+                    if (!(d <= 0)) continue;
+                    const Eigen::Vector3d w12 = q[c] + sum, T = d * w12.cross(A);
+                    for (int a = 0; a < 3; ++a) {
+                        shareF[a] += d * A[a];
+                        shareT[a] += T[a];
+                        shareQ[a] += d * w12[a] * A.dot(up);
+                    }
+                    shareD2 += d * d * A.dot(up);
+                    shareAy += A.dot(up);
+                    shareArea += s.absArea[t];
+                }
+            }
+            for (int width : cpuWidths()) {
+                StraddlingSums p;
+                const double uv[3] = {up.x(), up.y(), up.z()}, Xv[3] = {X.x(), X.y(), X.z()},
+                             Zv[3] = {Z.x(), Z.y(), Z.z()};
+                sumStraddlingTriangles(s, D.data(), list.data(), n, uv, Xv, Zv, 0.0, 0.0, p, width);
+                INFO("trial " << trial << " width " << width << " listed " << n);
+                const double tol = 1e-12;
+                for (int a = 0; a < 3; ++a) {
+                    CHECK(std::abs(p.F[a] - (3 * clip.F[a] - shareF[a])) <= tol);
+                    CHECK(std::abs(p.T[a] - (12 * clip.T[a] - shareT[a])) <= tol);
+                    CHECK(std::abs(p.Q[a] - (12 * clip.Q[a] - shareQ[a])) <= tol);
+                }
+                CHECK(std::abs(p.D2 - (12 * clip.D2 - shareD2)) <= tol);
+                CHECK(std::abs(up.dot(Eigen::Vector3d(p.B[0], p.B[1], p.B[2])) - (3 * clip.Ay - shareAy)) <= tol);
+                CHECK(std::abs(p.area - (3 * clip.area - shareArea)) <= tol);
+                CHECK(std::abs(p.waterline.area2 - clip.waterline.area2) <= tol);
+                CHECK(std::abs(p.waterline.x6 - clip.waterline.x6) <= tol);
+                CHECK(std::abs(p.waterline.z6 - clip.waterline.z6) <= tol);
+                CHECK(std::abs(p.waterline.xx12 - clip.waterline.xx12) <= tol);
+                CHECK(std::abs(p.waterline.xz24 - clip.waterline.xz24) <= tol);
+                CHECK(std::abs(p.waterline.zz12 - clip.waterline.zz12) <= tol);
+                ++compared;
+            }
+        }
+    }
+    CHECK(compared >= 15);
+    CHECK(listedTotal > 100);
 }
