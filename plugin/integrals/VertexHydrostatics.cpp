@@ -6,7 +6,7 @@
 ///     the patch, several vertices per instruction (VertexPassKernels.h), and only counted for the vertices that can
 ///     be under water: y_v ≤ the highest value the patch can take);
 ///  2. each vertex with D_v ≤ 0: the shares D_v B_v, D_v T_v, D_v M_v, D_v² B_v, B_v, a_v summed (several vertices
-///     per instruction: SSE2, AVX2 or AVX-512 chosen at run time, VertexSharesKernel.h);
+///     per instruction: SSE2, AVX2 or AVX-512 chosen at run time, VertexPassKernels.h);
 ///  3. each triangle: all corners under water → its ∫ D² n_y cross term (A_t (Σ D_i)²); corners on both sides (or an
 ///     edge exactly on the water) → listed (several triangles per instruction, VertexPassKernels.h);
 ///  4. the straddling triangles listed in pass 3: the shares their wet corners added are taken back and their exact
@@ -18,7 +18,6 @@
 #include "integrals/Hydrostatics.h"
 #include "integrals/VertexPassKernels.h"
 #include "integrals/VertexShares.h"
-#include "integrals/VertexSharesKernel.h"
 #include "integrals/WaterPatch.h"
 #include "water/btWaterSurface.h"
 
@@ -119,7 +118,7 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
 
     // Pass 2: the shares of the vertices under water (D ≤ 0), body frame, moments about the body origin.
     double sums[kShareSums] = {};
-    sumWetShares(shares, D, nv, sums);  // VertexSharesKernel.h
+    sumWetShares(shares, D, nv, sums);  // VertexPassKernels.h
     const double Fx = sums[kFx], Fy = sums[kFy], Fz = sums[kFz], Tx = sums[kTx], Ty = sums[kTy], Tz = sums[kTz];
     const double Gx = sums[kGx], Gy = sums[kGy], Gz = sums[kGz], Bx = sums[kBx], By = sums[kBy], Bz = sums[kBz];
     const double area = sums[kArea];

@@ -1,7 +1,7 @@
 /// @file VertexPassKernels.cpp
-/// Passes 1 and 3 of the per-vertex exact-mesh hydrostatics on waves, several vertices or triangles per instruction
+/// The passes of the per-vertex exact-mesh hydrostatics, several vertices or triangles per instruction
 /// (VertexPassKernels.h). Each width compiles VertexPassKernels.inl in its own namespace, force-inlined into a function
-/// built for its instruction set (as VertexSharesKernel.cpp); the vertices or triangles after the last full vector are
+/// built for its instruction set (as the Gerstner and drag kernels); the vertices or triangles after the last full vector are
 /// done one by one with the same operations.
 
 #include "integrals/VertexPassKernels.h"
@@ -67,6 +67,14 @@ __attribute__((target("avx512f"))) void straddlingAvx512(const VertexShares& s, 
                                                          StraddlingSums& out) {
     avx512::straddlingKernel(s, D, list, count, u, X, Z, xr, zr, out);
 }
+__attribute__((target("avx2"))) std::size_t sharesAvx2(const VertexShares& s, const double* D, std::size_t n,
+                                                      double* out) {
+    return avx2::sharesKernel(s, D, n, out);
+}
+__attribute__((target("avx512f"))) std::size_t sharesAvx512(const VertexShares& s, const double* D, std::size_t n,
+                                                           double* out) {
+    return avx512::sharesKernel(s, D, n, out);
+}
 __attribute__((target("avx2"))) std::size_t trianglesAvx2(const VertexShares& s, const double* D, double S[3],
                                                          std::int32_t* list, std::size_t& listed) {
     return avx2::trianglesKernel(s, D, S, list, listed);
@@ -95,10 +103,48 @@ double interpolateOne(const WaterPatch::CellGrid& g, double x, double z) {
 
 }  // namespace
 
+int vertexKernelLanes() {
+    static const int lanes = cpuLanes();
+    return lanes;
+}
+
+namespace {
+/// The width to run: the widest the CPU has (lanes ≤ 0), or the one asked for, capped at the widest.
+int widthFor(int lanes) { return lanes <= 0 ? vertexKernelLanes() : std::min(lanes, vertexKernelLanes()); }
+}  // namespace
+
+void sumWetShares(const VertexShares& s, const double* D, std::size_t n, double* out, int lanes) {
+    const int width = widthFor(lanes);
+    std::size_t done = 0;
+#ifdef BB_VERTEX_PASS_X86
+    if (width >= 8)
+        done = sharesAvx512(s, D, n, out);
+    else if (width >= 4)
+        done = sharesAvx2(s, D, n, out);
+    else
+#endif
+        done = sse2::sharesKernel(s, D, n, out);
+    // The last vertices one by one.
+    for (std::size_t v = done; v < n; ++v) {
+        const double d = D[v];
+        if (!(d <= 0)) continue;
+        const double b[3] = {s.bx[v], s.by[v], s.bz[v]};
+        for (int k = 0; k < 3; ++k) {
+            out[kFx + k] += d * b[k];
+            out[kGx + k] += d * d * b[k];
+            out[kBx + k] += b[k];
+        }
+        out[kTx] += d * s.tx[v];
+        out[kTy] += d * s.ty[v];
+        out[kTz] += d * s.tz[v];
+        out[kArea] += s.area[v];
+        for (int k = 0; k < 9; ++k) out[kM + k] += d * s.m[k][v];
+    }
+}
+
 void interpolatePatchHeights(const WaterPatch::CellGrid& g, const double* x, const double* z, std::size_t n,
                              double* out, int lanes) {
-    static const int widest = cpuLanes();
-    const int width = lanes <= 0 ? widest : std::min(lanes, widest);
+    const int width = widthFor(lanes);
     std::size_t done = 0;
 #ifdef BB_VERTEX_PASS_X86
     if (width >= 8)
@@ -113,8 +159,7 @@ void interpolatePatchHeights(const WaterPatch::CellGrid& g, const double* x, con
 
 bool vertexDepthsOnPatch(const VertexShares& s, const double R[9], const double t[3], const WaterPatch::CellGrid& g,
                          double waterHigh, double* D, int lanes) {
-    static const int widest = cpuLanes();
-    const int width = lanes <= 0 ? widest : std::min(lanes, widest);
+    const int width = widthFor(lanes);
     std::size_t done = 0;
 #ifdef BB_VERTEX_PASS_X86
     if (width >= 8)
@@ -139,8 +184,7 @@ bool vertexDepthsOnPatch(const VertexShares& s, const double R[9], const double 
 }
 
 std::size_t sumWetTriangles(const VertexShares& s, const double* D, double S[3], std::int32_t* straddling, int lanes) {
-    static const int widest = cpuLanes();
-    const int width = lanes <= 0 ? widest : std::min(lanes, widest);
+    const int width = widthFor(lanes);
     std::size_t listed = 0, done = 0;
 #ifdef BB_VERTEX_PASS_X86
     if (width >= 8)
@@ -169,8 +213,7 @@ std::size_t sumWetTriangles(const VertexShares& s, const double* D, double S[3],
 void sumStraddlingTriangles(const VertexShares& s, const double* D, const std::int32_t* list, std::size_t count,
                             const double u[3], const double X[3], const double Z[3], double xr, double zr,
                             StraddlingSums& out, int lanes) {
-    static const int widest = cpuLanes();
-    const int width = lanes <= 0 ? widest : std::min(lanes, widest);
+    const int width = widthFor(lanes);
 #ifdef BB_VERTEX_PASS_X86
     if (width >= 8)
         straddlingAvx512(s, D, list, count, u, X, Z, xr, zr, out);

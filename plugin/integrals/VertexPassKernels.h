@@ -1,15 +1,18 @@
 #pragma once
 /// @file VertexPassKernels.h
-/// Passes 1, 3 and 4 of the per-vertex exact-mesh hydrostatics on waves (VertexHydrostatics.cpp), and the water patch's
-/// heights at many points, several vertices, points or triangles per instruction (SSE2, AVX2 or AVX-512 chosen at run time, as sumWetShares in VertexSharesKernel.h):
-///  - vertexDepthsOnPatch: each vertex's depth D_v = y_v − f(x_v, z_v) with f the water patch's bicubic, the body →
-///    world transform and the interpolation fused in one pass (no list of the points queried);
-///  - sumWetTriangles: each triangle's class (entirely wet: its (Σ D_i)² A_t summed; a wet corner but not entirely
-///    wet: listed for the exact clip).
-/// Every lane computes the same operations in the same order as WaterPatch::height, so the depths agree with it to
-/// rounding (the wide builds may fuse a multiply and an add); the triangle sums differ from a one-by-one sum by the
-/// order of the additions only. Measured on the 3,400-triangle benchmark boat in the P3 sea (AVX-512): an exact
-/// evaluation 33 → 25 µs.
+/// The passes of the per-vertex exact-mesh hydrostatics (VertexHydrostatics.cpp; the shares are defined in
+/// VertexShares.h), several vertices or triangles per instruction (SSE2, AVX2 or AVX-512 chosen at run time, as for the
+/// Gerstner queries; VertexPassKernels.inl holds the code of one width):
+///  1. vertexDepthsOnPatch: each vertex's depth D_v = y_v − f(x_v, z_v), f the water patch's bicubic (the body → world
+///     transform and the interpolation fused; interpolatePatchHeights is the same interpolation at given points);
+///  2. sumWetShares: the shares of the vertices under water;
+///  3. sumWetTriangles: each triangle's class (entirely wet: its (Σ D_i)² A_t summed; a wet corner but not entirely
+///     wet: listed);
+///  4. sumStraddlingTriangles: the listed triangles' exact wet parts in closed form.
+/// Every lane computes the operations of the one-by-one code in the same order (the wide builds may fuse a multiply
+/// and an add), so the depths agree with WaterPatch::height to rounding and the sums differ from one-by-one sums by the
+/// order of the additions. Measured on the 3,400-triangle benchmark boat in the P3 sea (AVX-512): an exact evaluation
+/// 33 → 20 µs with passes 1, 3 and 4 vectorised (pass 2 was already).
 
 #include "integrals/VertexShares.h"
 #include "integrals/WaterPatch.h"
@@ -30,6 +33,18 @@ namespace buoyancy {
 /// @return false when an interpolated height was not finite (D is then unusable)
 bool vertexDepthsOnPatch(const VertexShares& shares, const double R[9], const double t[3],
                          const WaterPatch::CellGrid& cells, double waterHigh, double* D, int lanes = 0);
+
+/// Layout of the sums: Σ D B (3, m³), Σ D T (3, about the body origin, m⁴), Σ D² B (3, m⁴), Σ B (3, m²), Σ a (1, m²),
+/// Σ D M (9, row-major, m⁴), all over the vertices with D ≤ 0, body frame.
+enum ShareSum { kFx, kFy, kFz, kTx, kTy, kTz, kGx, kGy, kGz, kBx, kBy, kBz, kArea, kM, kShareSums = kM + 9 };
+
+/// Add the shares of the vertices 0..n−1 whose D[v] ≤ 0 to out[kShareSums] (D > 0, +∞ or NaN add nothing).
+/// @param lanes  0: the widest the CPU runs; 2, 4 or 8 asks for that width (the tests run every width the CPU has), a
+///               width the CPU lacks falls back to the widest it has below it
+void sumWetShares(const VertexShares& shares, const double* D, std::size_t n, double* out, int lanes = 0);
+
+/// Lanes the kernels of this file use on this CPU by default (8 AVX-512F, 4 AVX2, 2 otherwise).
+int vertexKernelLanes();
 
 /// The patch's interpolant at the world points (x[k], z[k]), k < n (WaterPatch::heights for many points): the
 /// operations of WaterPatch::height lane by lane (clamped outside the footprint; x, z finite).
