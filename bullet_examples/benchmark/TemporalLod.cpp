@@ -20,6 +20,7 @@
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace buoyancy::bench {
 
@@ -125,7 +126,10 @@ std::vector<TemporalLodRow> runTemporalLod(const TriangleMesh& mesh, const std::
     const btGerstnerWaterSurface water(p3Sea());
     const double dt = 1.0 / 240.0;
     const double rho = 1000.0, g = 9.81;
-    for (const auto& [interval, tolerance] : o.configurations) {
+    std::vector<std::tuple<int, double, int, double>> runs;  // interval, tolerance, bodies, seconds
+    for (const auto& [interval, tolerance] : o.configurations) runs.emplace_back(interval, tolerance, o.bodies, o.seconds);
+    if (o.fleetBodies > 0) runs.emplace_back(0, 0.0, o.fleetBodies, o.fleetSeconds);
+    for (const auto& [interval, tolerance, bodyCount, seconds] : runs) {
         btBuoyancySettings settings;
         settings.hydrostaticsInterval = interval;
         if (tolerance > 0) settings.hydrostaticsReuseTolerance = tolerance;
@@ -137,7 +141,7 @@ std::vector<TemporalLodRow> runTemporalLod(const TriangleMesh& mesh, const std::
         bs.density = 500.0;
         std::vector<std::unique_ptr<btBuoyantBody>> bodies;
         std::vector<std::unique_ptr<btBuoyancyAction>> actions;
-        for (int i = 0; i < o.bodies; ++i) {
+        for (int i = 0; i < bodyCount; ++i) {
             btTransform t = btTransform::getIdentity();
             t.setRotation(btQuaternion(btVector3(0, 1, 0), btScalar(0.7 * i)));
             t.setOrigin(btVector3(btScalar(17.0 * i), 0, btScalar(5.0 * i)));
@@ -146,7 +150,7 @@ std::vector<TemporalLodRow> runTemporalLod(const TriangleMesh& mesh, const std::
             actions.push_back(std::make_unique<btBuoyancyAction>(*bodies.back(), &buoyancy, settings));
             world.addAction(actions.back().get());
         }
-        const long settle = std::lround(o.settleSeconds / dt), measured = std::lround(o.seconds / dt);
+        const long settle = std::lround(o.settleSeconds / dt), measured = std::lround(seconds / dt);
         for (long n = 0; n < settle; ++n) world.stepSimulation(btScalar(dt), 1, btScalar(dt));
         const double scale = rho * g * shape->getUnitSolid().volume;
         const double diameter = 2.0 * shape->getBoundsRadius();
@@ -181,15 +185,15 @@ std::vector<TemporalLodRow> runTemporalLod(const TriangleMesh& mesh, const std::
         row.energyDriftPct = energyDriftPct(settings, o.energySeconds);
         row.sphereAmplitudeChangePct = sphereAmplitudeChangePct(settings, o.energySeconds);
         row.resolvedInterval = interval > 0 ? interval : btBuoyancyAutomaticInterval(dt);
-        row.bodies = o.bodies;
+        row.bodies = bodyCount;
         const double count = double(std::max<std::size_t>(forceErrors.size(), 1));
         row.predictedPct = 100.0 * double(predicted) / count;
-        row.nsPerBodySubstep = 1e9 * wall / (double(o.bodies) * double(std::max(measured, 1L)));
+        row.nsPerBodySubstep = 1e9 * wall / (double(bodyCount) * double(std::max(measured, 1L)));
         row.forceErrorMeanPct = 100.0 * sum / count;
         row.forceErrorP99Pct = forceErrors.empty() ? 0 : 100.0 * forceErrors[forceErrors.size() * 99 / 100];
         row.forceErrorMaxPct = forceErrors.empty() ? 0 : 100.0 * forceErrors.back();
         row.torqueErrorMaxPct = 100.0 * torqueMax;
-        log << "  temporal lod " << model << " interval " << interval << " tolerance " << row.tolerance
+        log << "  temporal lod " << model << " x" << bodyCount << " interval " << interval << " tolerance " << row.tolerance
             << " (K = " << row.resolvedInterval
             << "): " << fmt("%.0f", row.nsPerBodySubstep) << " ns/body-substep, predicted " << fmt("%.1f", row.predictedPct)
             << " %, force error mean " << fmt("%.5f", row.forceErrorMeanPct) << " % p99 " << fmt("%.5f", row.forceErrorP99Pct)
@@ -225,12 +229,13 @@ std::string temporalLodMarkdown(const std::vector<TemporalLodRow>& rows) {
           "Bullet's step included; force error of every applied substep against clipping every triangle with exact "
           "wave queries, % of ρ g V. Energy: an undamped bobbing box, worst drift over 60 s, % of its energy above "
           "rest; an undamped bobbing sphere, its heave amplitude over the last 5 s of 60 against the first 5 s.\n\n"
-       << "| interval | tolerance % | K | predicted % | µs / body-substep | force err mean % | p99 % | max % | torque err "
-          "max % | box energy drift % | sphere amplitude change % |\n"
-       << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+       << "| interval | tolerance % | K | boats | predicted % | µs / body-substep | force err mean % | p99 % | max % | "
+          "torque err max % | box energy drift % | sphere amplitude change % |\n"
+       << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& r : rows)
         md << "| " << (r.interval == 0 ? std::string("0 (default)") : std::to_string(r.interval)) << " | "
-           << fmt("%.2g", 100.0 * r.tolerance) << " | " << r.resolvedInterval << " | " << fmt("%.1f", r.predictedPct)
+           << fmt("%.2g", 100.0 * r.tolerance) << " | " << r.resolvedInterval << " | " << r.bodies << " | "
+           << fmt("%.1f", r.predictedPct)
            << " | " << fmt("%.1f", 1e-3 * r.nsPerBodySubstep) << " | " << fmt("%.5f", r.forceErrorMeanPct) << " | "
            << fmt("%.5f", r.forceErrorP99Pct) << " | " << fmt("%.4f", r.forceErrorMaxPct) << " | "
            << fmt("%.4f", r.torqueErrorMaxPct) << " | " << fmt("%.3f", r.energyDriftPct) << " | "

@@ -112,6 +112,7 @@ int runBench(const BenchOptions& o) {
         if (o.quick) {
             to.configurations = {{1, 0.0}, {0, 0.0}, {4, 0.002}};
             to.bodies = 2;
+            to.fleetBodies = 0;
             to.settleSeconds = 0.5;
             to.seconds = 0.5;
             to.energySeconds = 5.0;

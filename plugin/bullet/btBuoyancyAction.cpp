@@ -552,8 +552,11 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
     const double scale = m_world->getFluidDensity() * m_world->getGravity() * m_shape->getUnitSolid().volume;
     const double diameter = 2.0 * m_shape->getBoundsRadius();
     // Check the predictor against this exact evaluation (one interval past the newest record: a little further than
-    // any substep it predicted). A miss makes the next interval exact. Three misses in the last four checks: the body's
-    // motion is too fast for its interval (the extrapolation's error grows like the interval⁴), which is halved
+    // any substep it predicted). A miss makes the body evaluate exactly until two checks in a row pass (one pass after a
+    // miss was often luck: in a fleet of 200 boats in the P3 sea the worst predicted substep fell from 0.095 % to
+    // 0.054 % of ρ g V with this and the next rule, at the same share of substeps predicted). Two misses in a row, or
+    // three in the last four checks: the body's motion is too fast for its interval (the extrapolation's error grows
+    // like the interval⁴), which is halved
     // (down to 2, and only to a divisor of the resolved interval); it is doubled back after 16 passes in a row whose
     // mean error × 2⁴ stays within half the tolerance, or after 64 (a miss in the first four checks after a
     // doubling halves it again at once). The records are kept across the switches (btHydrostaticsHistory keeps
@@ -582,13 +585,14 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
             m_passingErrorSum = 0;
             const int bits = (m_checkMisses & 1) + ((m_checkMisses >> 1) & 1) + ((m_checkMisses >> 2) & 1) +
                              ((m_checkMisses >> 3) & 1);
-            if ((bits >= 3 || probation > 0) && interval % 2 == 0 && interval / 2 >= 2) {
+            const bool twoInARow = (m_checkMisses & 3) == 3;
+            if ((bits >= 3 || twoInARow || probation > 0) && interval % 2 == 0 && interval / 2 >= 2) {
                 m_adaptedInterval = interval / 2;  // this substep is on the halved interval's grid too
                 m_checkMisses = 0;
                 m_probation = 0;
                 halve = true;  // the records' spacing, once this evaluation is pushed
             } else {
-                m_reuseCooldown = 1;
+                m_reuseCooldown = 2;  // predictions resume after two passing checks in a row
             }
         } else {
             if (m_reuseCooldown > 0) --m_reuseCooldown;

@@ -155,7 +155,7 @@ private:
     /// @name Temporal level of detail (settings.hydrostaticsInterval)
     ///@{
     btHydrostaticsHistory m_history;   ///< the last exact evaluations at this body's evaluation substeps
-    int m_reuseCooldown = 0;           ///< evaluation substeps left before predicting again (a check failed)
+    int m_reuseCooldown = 0;           ///< passing checks (or evaluation substeps without one) before predicting again
     std::uint64_t m_phase = 0;         ///< the body evaluates exactly when (substep + m_phase) % interval == 0
     int m_interval = 1;                ///< this substep's interval (m_adaptedInterval)
     /// This body's interval: settings.hydrostaticsInterval resolved, halved after repeated misses of the check
