@@ -65,8 +65,8 @@ std::vector<btGerstnerWave> p3Sea() {
 namespace {
 std::vector<btGerstnerWave> sea() { return p3Sea(); }
 
-/// Height of the mesh origin above flat water at which the unrotated mesh floats (V_sub = densityRatio · V), found
-/// by bisection on the exact clip: the bodies start near equilibrium, so the timed second is not their first plunge.
+}  // namespace
+
 double floatingHeight(const TriangleMesh& mesh, double volume, double densityRatio) {
     double lo = 1e300, hi = -1e300;
     for (const auto& v : mesh.vertices) {
@@ -83,7 +83,6 @@ double floatingHeight(const TriangleMesh& mesh, double volume, double densityRat
     }
     return 0.5 * (a + b);
 }
-}  // namespace
 
 bool scalingHasOpenMP() {
 #ifdef BUOYANCY_BENCH_OPENMP

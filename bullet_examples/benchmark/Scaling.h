@@ -54,6 +54,11 @@ struct ScalingRow {
 /// The sea of issue 9's P3: four Gerstner waves, amplitudes 1, 0.6, 0.35, 0.2 m, wavelengths 60, 35, 20, 10 m.
 std::vector<btGerstnerWave> p3Sea();
 
+/// Height of the mesh origin above flat water at which the unrotated mesh floats (V_sub = densityRatio · V, volume its
+/// volume, m³), m, found by bisection on the exact clip: the scaling bodies start near equilibrium, so the timed second
+/// is not their first plunge.
+double floatingHeight(const TriangleMesh& mesh, double volume, double densityRatio);
+
 /// True when the benchmark was built with OpenMP (threads > 1 possible).
 bool scalingHasOpenMP();
 

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -126,10 +127,17 @@ std::vector<TemporalLodRow> runTemporalLod(const TriangleMesh& mesh, const std::
     const btGerstnerWaterSurface water(p3Sea());
     const double dt = 1.0 / 240.0;
     const double rho = 1000.0, g = 9.81;
-    std::vector<std::tuple<int, double, int, double>> runs;  // interval, tolerance, bodies, seconds
-    for (const auto& [interval, tolerance] : o.configurations) runs.emplace_back(interval, tolerance, o.bodies, o.seconds);
-    if (o.fleetBodies > 0) runs.emplace_back(0, 0.0, o.fleetBodies, o.fleetSeconds);
-    for (const auto& [interval, tolerance, bodyCount, seconds] : runs) {
+    // interval, tolerance, bodies, settle and measured seconds, placed as in the P3 scaling run
+    std::vector<std::tuple<int, double, int, double, double, bool>> runs;
+    for (const auto& [interval, tolerance] : o.configurations)
+        runs.emplace_back(interval, tolerance, o.bodies, o.settleSeconds, o.seconds, false);
+    if (o.fleetBodies > 0) runs.emplace_back(0, 0.0, o.fleetBodies, o.fleetSettleSeconds, o.fleetSeconds, true);
+    Eigen::Vector3d lo = mesh.vertices.front(), hi = lo;
+    for (const auto& v : mesh.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    for (const auto& [interval, tolerance, bodyCount, settleSeconds, seconds, asP3] : runs) {
         btBuoyancySettings settings;
         settings.hydrostaticsInterval = interval;
         if (tolerance > 0) settings.hydrostaticsReuseTolerance = tolerance;
@@ -141,16 +149,24 @@ std::vector<TemporalLodRow> runTemporalLod(const TriangleMesh& mesh, const std::
         bs.density = 500.0;
         std::vector<std::unique_ptr<btBuoyantBody>> bodies;
         std::vector<std::unique_ptr<btBuoyancyAction>> actions;
+        const double spacing = 4.0 * (hi - lo).maxCoeff();  // the P3 layout: four body lengths
+        const double floating = asP3 ? floatingHeight(mesh, shape->getUnitSolid().volume, bs.density / rho) : 0.0;
+        const int side = int(std::ceil(std::sqrt(double(bodyCount))));
         for (int i = 0; i < bodyCount; ++i) {
             btTransform t = btTransform::getIdentity();
             t.setRotation(btQuaternion(btVector3(0, 1, 0), btScalar(0.7 * i)));
-            t.setOrigin(btVector3(btScalar(17.0 * i), 0, btScalar(5.0 * i)));
+            if (asP3) {
+                const double x = spacing * (i % side), z = spacing * (i / side);
+                t.setOrigin(btVector3(btScalar(x), btScalar(water.height(x, z, 0.0) + floating), btScalar(z)));
+            } else {
+                t.setOrigin(btVector3(btScalar(17.0 * i), 0, btScalar(5.0 * i)));
+            }
             bodies.push_back(std::make_unique<btBuoyantBody>(shape, bs, t));
             world.addRigidBody(bodies.back()->getRigidBody());
             actions.push_back(std::make_unique<btBuoyancyAction>(*bodies.back(), &buoyancy, settings));
             world.addAction(actions.back().get());
         }
-        const long settle = std::lround(o.settleSeconds / dt), measured = std::lround(seconds / dt);
+        const long settle = std::lround(settleSeconds / dt), measured = std::lround(seconds / dt);
         for (long n = 0; n < settle; ++n) world.stepSimulation(btScalar(dt), 1, btScalar(dt));
         const double scale = rho * g * shape->getUnitSolid().volume;
         const double diameter = 2.0 * shape->getBoundsRadius();

@@ -26,10 +26,12 @@ struct TemporalLodOptions {
     std::vector<std::pair<int, double>> configurations{{1, 0.0}, {0, 0.0}, {4, 0.0}, {4, 0.002}, {8, 0.002},
                                                        {12, 0.002}, {16, 0.002}};
     int bodies = 5;              ///< boats, 17 m apart, varied headings
-    /// A last row at the default settings with this many boats for fleetSeconds (the rare worst substeps of a fleet;
-    /// 0: none).
+    /// A last row at the default settings with this many boats placed as in the P3 scaling run (floating on the local
+    /// water surface, four body lengths apart), settled for fleetSettleSeconds, errors over fleetSeconds: the rare
+    /// worst substeps of a fleet (0: none).
     int fleetBodies = 200;
-    double fleetSeconds = 5.0;   ///< simulated while the fleet row's errors are taken, s
+    double fleetSettleSeconds = 4.0;  ///< simulated before the fleet row's errors are taken, s
+    double fleetSeconds = 5.0;        ///< simulated while the fleet row's errors are taken, s
     double settleSeconds = 2.0;  ///< simulated before errors are taken, s
     double seconds = 10.0;       ///< simulated while errors are taken, s
     double energySeconds = 60.0; ///< the undamped box's run, s
