@@ -117,7 +117,10 @@ private:
                      bool reuseWater = false);
     /// Temporal level of detail: fill `predicted` with this substep's extrapolated evaluation and return true,
     /// or return false when this substep must be evaluated exactly (btBuoyancySettings::hydrostaticsInterval).
+    /// bodyLow / bodyHigh: the lowest and highest world height of the body's bounding sphere, waterLow / waterHigh the
+    /// water's bounds over its footprint (btWaterSurface::heightBounds), m.
     bool predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose, const Eigen::Vector3d& com,
+                             double bodyLow, double bodyHigh, double waterLow, double waterHigh,
                              btHydrostaticsSnapshot& predicted) const;
     /// Temporal level of detail: after an exact evaluation at one of the body's evaluation substeps, check the
     /// predictor against it, then record it.

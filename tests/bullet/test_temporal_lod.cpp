@@ -350,6 +350,47 @@ TEST_CASE("interval 4: a teleported body is evaluated exactly at once", "[bullet
     CHECK(worst < btBuoyancySettings().hydrostaticsReuseTolerance);
 }
 
+TEST_CASE("defaults: a body landing in the waves or surfacing from under them is not extrapolated across the surface",
+          "[bullet][temporal]") {
+    // A body whose last evaluation found it entirely out of the water (or entirely under it) has records that say
+    // nothing of the surface it is about to cross: the force it gets while it lands (or surfaces) must be the exact one.
+    // Landing: a box released 1.5 m above the mean level of a swell falls for a while inside the swell's bounds (so it
+    // is not culled, and its records say "dry") before it hits the water. Surfacing: a light box released 1.5 m under
+    // calm water rises through it (undamped, it then leaves the water and lands again). Oracle: clipping every triangle
+    // at the body's pose with exact wave queries.
+    const btGerstnerWaterSurface swell(testSea());
+    const btFlatWaterSurface calmWater(0.0);
+    const btBuoyancySettings s = undampedDefaults();
+    for (const double startY : {1.5, -1.5}) {
+        const btWaterSurface& calm = startY > 0 ? static_cast<const btWaterSurface&>(swell) : calmWater;
+        auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(1.0, 1.0, 1.0), s);
+        BulletTestWorld w(&calm);
+        btBuoyantBodySettings body;
+        body.density = 500;
+        w.add(shape, body, makePose(btVector3(0, btScalar(startY), 0)), s);
+        const double scale = 1000.0 * 9.81 * shape->getUnitSolid().volume;
+        double worst = 0;
+        int crossing = 0, predicted = 0;
+        for (int n = 0; n < 480; ++n) {
+            w.step(1, 1);
+            const btBuoyancyResult& r = w.action(0).getLastResult();
+            if (!r.applied) continue;
+            const buoyancy::HydrostaticsResult e = exactNow(w, 0, calm);
+            const double wet = e.submerged_volume / shape->getUnitSolid().volume;
+            if (wet > 1e-6 && wet < 1 - 1e-6) ++crossing;
+
+            predicted += r.predicted;
+            worst = std::max(worst, (toEigen(r.buoyancyForce) - e.force).norm() / scale);
+        }
+        std::printf("box %s: worst force error %.2e of rho g V over 2 s (%d substeps across the surface, %d predicted)\n",
+                    startY > 0 ? "landing in a swell from 1.5 m" : "surfacing from 1.5 m under calm water", worst, crossing,
+                    predicted);
+        CHECK(crossing > 100);
+        CHECK(predicted > 0);  // the level of detail is at work once the body floats
+        CHECK(worst < 1e-3);
+    }
+}
+
 TEST_CASE("interval 4 in flat water: the same equilibrium draft as exact every substep", "[bullet][temporal]") {
     // Oracle: a wall-sided box of density ratio s floats with draft s·c (Archimedes).
     const double a = 2, c = 0.5, b = 1, s = 0.4;
