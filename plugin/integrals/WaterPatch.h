@@ -96,7 +96,7 @@ private:
     mutable std::vector<double> m_coef;             ///< 16 coefficients per cell (cell())
     mutable std::vector<std::uint32_t> m_cellStamp; ///< build epoch each cell's coefficients belong to
     std::uint32_t m_epoch = 0;                      ///< incremented by build()
-    mutable std::uint32_t m_allCellsEpoch = 0;      ///< the build epoch whose cells heights() has all computed
+    mutable std::uint32_t m_allCellsEpoch = 0;      ///< the build epoch whose cells computeAllCells() has all computed
 };
 
 }  // namespace buoyancy
