@@ -6,18 +6,20 @@ PACKAGES=(
   libbullet-dev            # Bullet 3.24, float (bullet.pc) and double (bullet-float64.pc) builds
   libeigen3-dev            # Eigen 3.4
   libassimp-dev            # assimp 5.2 mesh import
+  zlib1g-dev               # assimp's CMake package links /usr/lib/x86_64-linux-gnu/libz.so by path, and
+                           # libassimp-dev does not depend on zlib1g-dev (checked by scripts/fresh-debian-check.sh)
   assimp-testmodels        # real models used by the tests (and the demo)
   catch2                   # Catch2 2.13 tests
   libcli11-dev             # CLI11 command-line parsing
   nlohmann-json3-dev       # JSON (CLI output, scene files)
-  # issue 8: offscreen pictures (`buoyancy run --png`), the scene browser and its test under Xvfb
+  # offscreen pictures (`buoyancy run --png`), the scene browser and its test under Xvfb
   libopengl-dev libgl-dev  # OpenGL 3.3 core entry points (GLVND libOpenGL) and GL/glcorearb.h
   libegl-dev libegl-mesa0 libgl1-mesa-dri  # EGL surfaceless + Mesa's llvmpipe: rendering without a display
   libstb-dev               # stb_image_write (PNG) and stb_image (tests, permeability textures in plugin/graph)
   libglfw3-dev             # the browser's window
   libimgui-dev             # Dear ImGui 1.86 with its GLFW/OpenGL 3 backends (the browser's panels)
   xvfb xauth               # xvfb-run: the browser test and scripts/pictures.sh without a display
-  ocl-icd-opencl-dev       # OpenCL ICD loader (libOpenCL) for the OpenCL backend (issue 7)
+  ocl-icd-opencl-dev       # OpenCL ICD loader (libOpenCL) for the OpenCL backend
   opencl-c-headers         # OpenCL C headers
   opencl-clhpp-headers     # OpenCL C++ bindings <CL/opencl.hpp>
   pocl-opencl-icd          # PoCL: an OpenCL CPU device, so the OpenCL tests run without a GPU
