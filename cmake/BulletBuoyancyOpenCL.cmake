@@ -1,4 +1,4 @@
-# OpenCL backend (issue 7), for our own build. BULLET_BUOYANCY_OPENCL = AUTO (default: on when the OpenCL
+# OpenCL backend, for our own build. BULLET_BUOYANCY_OPENCL = AUTO (default: on when the OpenCL
 # headers, the C++ bindings <CL/opencl.hpp> and the ICD loader library are found, else a message and the
 # CPU-only build), ON (required: configuring fails without them) or OFF (CPU only).
 # Sets BULLET_BUOYANCY_WITH_OPENCL (ON/OFF) and defines bullet_buoyancy_enable_opencl(target), which embeds the
@@ -6,7 +6,7 @@
 # opencl-clhpp-headers; a device at run time: pocl-opencl-icd (third_party_notes/opencl.md).
 
 set(BULLET_BUOYANCY_OPENCL AUTO CACHE STRING
-    "OpenCL backend (issue 7): AUTO = when OpenCL + <CL/opencl.hpp> are found, ON = required, OFF = CPU only")
+    "OpenCL backend: AUTO = when OpenCL + <CL/opencl.hpp> are found, ON = required, OFF = CPU only")
 set_property(CACHE BULLET_BUOYANCY_OPENCL PROPERTY STRINGS AUTO ON OFF)
 
 set(BULLET_BUOYANCY_WITH_OPENCL OFF)
@@ -35,7 +35,7 @@ else()
   endif()
 endif()
 
-# Embed plugin/integrals/SampleFormulas.h + kernels/*.cl into a generated header (one string), so an installed
+# Embed plugin/BulletBuoyancy/geometry/SampleFormulas.h + kernels/*.cl into a generated header (one string), so an installed
 # library needs no file at run time (Bullet3's *Kernels.h style). Always called; without OpenCL it does nothing
 # but define BULLET_BUOYANCY_HAVE_OPENCL=0.
 function(bullet_buoyancy_enable_opencl target)
@@ -52,8 +52,8 @@ function(bullet_buoyancy_enable_opencl target)
       message(FATAL_ERROR "kernels/: ${_f} is not listed in cmake/BulletBuoyancyOpenCL.cmake")
     endif()
   endforeach()
-  set(_formulas ${PROJECT_SOURCE_DIR}/plugin/integrals/SampleFormulas.h)
-  set(_out ${PROJECT_BINARY_DIR}/generated/opencl/BuoyancyKernelSource.h)
+  set(_formulas ${PROJECT_SOURCE_DIR}/plugin/BulletBuoyancy/geometry/SampleFormulas.h)
+  set(_out ${PROJECT_BINARY_DIR}/generated/BulletBuoyancy/bullet/BuoyancyKernelSource.h)
   add_custom_command(OUTPUT ${_out}
     COMMAND ${CMAKE_COMMAND} "-DOUT=${_out}" "-DINPUTS=${_formulas};${_cl}"
             -P ${PROJECT_SOURCE_DIR}/cmake/EmbedKernels.cmake
@@ -64,6 +64,7 @@ function(bullet_buoyancy_enable_opencl target)
   target_compile_definitions(${target} PRIVATE BULLET_BUOYANCY_HAVE_OPENCL=1
     CL_HPP_TARGET_OPENCL_VERSION=120 CL_HPP_MINIMUM_OPENCL_VERSION=120 CL_HPP_ENABLE_EXCEPTIONS)
   target_include_directories(${target} PRIVATE ${OpenCL_INCLUDE_DIRS} ${BULLET_BUOYANCY_CLHPP_DIR})
-  # Linked by file name, so the exported target carries no OpenCL::OpenCL a consumer would have to find first.
-  target_link_libraries(${target} PRIVATE ${OpenCL_LIBRARIES})
+  # Linked as the imported target, so the installed package names no path of this machine: a consumer's
+  # BulletBuoyancyConfig.cmake finds OpenCL again (find_dependency).
+  target_link_libraries(${target} PRIVATE OpenCL::OpenCL)
 endfunction()

@@ -1,6 +1,6 @@
 #pragma once
 /// @file FuzzContract.h
-/// What every libFuzzer target of fuzz/ shares (issue 10): how a broken contract is reported, so that
+/// What every libFuzzer target of fuzz/ shares: how a broken contract is reported, so that
 /// scripts/fuzz-run.sh can tell it from a crash ("contract violated: ..." then abort, libFuzzer keeps the
 /// input in its artifacts).
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file FuzzMeshDecode.h
-/// Turns fuzzer bytes into a triangle soup (issue 10). Layout (all optional, missing bytes read as 0):
+/// Turns fuzzer bytes into a triangle soup. Layout (all optional, missing bytes read as 0):
 ///   byte 0  header h: bits 0–5 vertex count − 1 (1..64); bit 6: per-corner UVs follow each triangle;
 ///           bit 7: coordinates are raw 8-byte doubles (NaN, Inf, huge, tiny) instead of the int8 grid
 ///   then    #V vertices: 3 × int8 (× 0.125 m: a coarse grid, so closed meshes and coincident vertices
@@ -11,9 +11,9 @@
 /// (degenerate, open, non-manifold, inside-out, duplicated, NaN) can.
 #include "FuzzContract.h"
 
-#include "mesh/MeshImport.h"
-#include "mesh/MeshRepair.h"
-#include "mesh/TriangleMesh.h"
+#include <BulletBuoyancy/mesh/MeshImport.h>
+#include <BulletBuoyancy/mesh/MeshRepair.h>
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
 
 #include <cstddef>
 #include <cstdint>

@@ -7,8 +7,8 @@
 /// Contract checked here (our code): failures end as MeshError; accepted soups have valid indices.
 #include "FuzzContract.h"
 
-#include "mesh/MeshImport.h"
-#include "mesh/MeshRepair.h"
+#include <BulletBuoyancy/mesh/MeshImport.h>
+#include <BulletBuoyancy/mesh/MeshRepair.h>
 
 #include <cstdint>
 #include <cstdio>

@@ -6,9 +6,9 @@
 /// UVs in [0,1]², samples finite and non-negative in area, mass properties finite.
 #include "FuzzMeshDecode.h"
 
-#include "atlas/UvLayout.h"
-#include "bake/BakeSamples.h"
-#include "integrals/MassProperties.h"
+#include <BulletBuoyancy/atlas/UvLayout.h>
+#include <BulletBuoyancy/bake/BakeSamples.h>
+#include <BulletBuoyancy/integrals/MassProperties.h>
 
 #include <cmath>
 #include <cstdio>

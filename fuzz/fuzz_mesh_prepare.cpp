@@ -5,7 +5,7 @@
 /// coordinates, valid indices, UVs that followed their triangles, and finite positive volume.
 #include "FuzzMeshDecode.h"
 
-#include "integrals/MassProperties.h"
+#include <BulletBuoyancy/integrals/MassProperties.h>
 
 #include <cmath>
 

@@ -6,7 +6,7 @@
 /// (huge, negative, NaN) by both filters give values in [0, 1].
 #include "FuzzContract.h"
 
-#include "graph/PermeabilityTexture.h"
+#include <BulletBuoyancy/graph/PermeabilityTexture.h>
 
 #include <cmath>
 #include <cstdint>

@@ -1,12 +1,12 @@
 /// @file fuzz_scene_json.cpp
-/// libFuzzer target: the scene-file parser and validator of `buoyancy run` (cli/SceneFile.cpp) on
+/// libFuzzer target: the scene-file parser and validator of `buoyancy run` (scene/SceneFile.cpp) on
 /// arbitrary text, without running anything. Contract checked: bad input ends as cli::UsageError naming
 /// the file; an accepted scene has settings the library itself accepts (btBuoyancySettings::validate,
 /// btBuoyantBodySettings::validate), finite numbers, dt > 0 and a unit rotation axis.
 #include "FuzzContract.h"
 
-#include "cli/CliErrors.h"
-#include "cli/SceneFile.h"
+#include "scene/SceneErrors.h"
+#include "scene/SceneFile.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,5 +1,5 @@
 /// @file fuzz_water_graph_json.cpp
-/// libFuzzer target: a body's "water_graph" / "permeability" / "density_map" keys (cli/SceneGraph.cpp,
+/// libFuzzer target: a body's "water_graph" / "permeability" / "density_map" keys (scene/SceneGraph.cpp,
 /// docs/scene-format.md) on arbitrary JSON, then — when they are accepted — the water graph running on a
 /// 1 m box for 30 steps: ingress through the permeable samples at a pose half under water, exchange and
 /// flow (plugin/graph). The input is the body object itself when it has one of those keys, else the value
@@ -10,13 +10,13 @@
 /// rounding).
 #include "FuzzContract.h"
 
-#include "atlas/UvLayout.h"
-#include "bake/BakeSamples.h"
-#include "cli/CliErrors.h"
-#include "cli/SceneGraph.h"
-#include "graph/WaterGraphState.h"
-#include "graph/WaterIngress.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/atlas/UvLayout.h>
+#include <BulletBuoyancy/bake/BakeSamples.h>
+#include "scene/SceneErrors.h"
+#include "scene/SceneGraph.h"
+#include <BulletBuoyancy/graph/WaterGraphState.h>
+#include <BulletBuoyancy/graph/WaterIngress.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerate the seed corpora in fuzz/corpus/<target>/ (issue 10). Deterministic; run from anywhere.
+"""Regenerate the seed corpora in fuzz/corpus/<target>/. Deterministic; run from anywhere.
 
 mesh_prepare / atlas_bake: soups in the byte layout of FuzzMeshDecode.h (closed cube, tetrahedron, cube with
 UVs, inside-out cube, open box, two disjoint cubes, cube inside a cube, raw-double cube with a NaN).

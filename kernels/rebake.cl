@@ -1,6 +1,6 @@
-// Deformable bodies (paper Fig. 17, issue 7): re-bake positions and area vectors of one mesh's samples from
+// Deformable bodies (paper Fig. 17): re-bake positions and area vectors of one mesh's samples from
 // animated vertex positions through the fixed texel → (triangle, weight, barycentric) map
-// (plugin/bake/DeformableRebake.h; per-piece formula bb_rebake_piece in SampleFormulas.h).
+// (plugin/BulletBuoyancy/bake/DeformableRebake.h; per-piece formula bb_rebake_piece in SampleFormulas.h).
 // vertices: 3 reals per vertex; triangles: 3 ints per triangle; pieceStart: nsamples + 1 offsets into
 // pieceTri / pieceData (3 reals per piece: weight, β1, β2). Writes BB_SAMPLE_STRIDE reals per sample, from
 // sample slot firstSample of `out` on (the mesh's place in the backend's sample buffer).

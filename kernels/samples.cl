@@ -1,6 +1,6 @@
-// Per-sample work of the OpenCL backend (issue 7): every body of a world in one launch per pass.
-// The formulas are those of plugin/integrals/SampleFormulas.h (prepended to this program), shared with the
-// CPU path. Host side: plugin/opencl/btOpenClBuoyancyBackend.cpp.
+// Per-sample work of the OpenCL backend: every body of a world in one launch per pass.
+// The formulas are those of plugin/BulletBuoyancy/geometry/SampleFormulas.h (prepended to this program), shared with the
+// CPU path. Host side: plugin/BulletBuoyancy/bullet/btOpenClBuoyancyBackend.cpp.
 //
 // samples: BB_SAMPLE_STRIDE reals per sample, every mesh of the world in one buffer:
 //          px py pz ax ay az area | cxx cxy cxz cyy cyz czz, velocity probe x y z (drag clusters only)
@@ -36,7 +36,7 @@ static void bb_group_reduce(const bb_real* part, int nterms, __local bb_real* sc
         for (int k = 0; k < nterms; ++k) partials[get_group_id(0) * nterms + k] = scratch[k];
 }
 
-// Hydrostatics (DESIGN-NOTES 2.2–2.3): transform, water height, wetted sums about the COM.
+// Hydrostatics (design.md 2.2–2.3): transform, water height, wetted sums about the COM.
 __kernel void bb_hydro_tiles(__global const bb_real* samples, __global const bb_real* bodies,
                              __global const int4* tiles, int waterType, __global const bb_real* wp,
                              __global const bb_real* grid, bb_real time, __global bb_real* partials,
@@ -62,7 +62,7 @@ __kernel void bb_hydro_tiles(__global const bb_real* samples, __global const bb_
     bb_group_reduce(part, BB_HYDRO_TERMS, scratch, partials);
 }
 
-// Drag (DESIGN-NOTES 2.6) on the drag clusters: transform, wet fraction over the cluster's vertical half
+// Drag (design.md 2.6) on the drag clusters: transform, wet fraction over the cluster's vertical half
 // extent, water velocity, drag sums about the COM.
 __kernel void bb_drag_tiles(__global const bb_real* samples, __global const bb_real* bodies,
                             __global const int4* tiles, int waterType, __global const bb_real* wp,

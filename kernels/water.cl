@@ -1,4 +1,4 @@
-// Water surfaces evaluated on the device (issue 7): flat, Gerstner (the same Newton inversion as
+// Water surfaces evaluated on the device: flat, Gerstner (the same Newton inversion as
 // btGerstnerWaterSurface::solve, cold start), and a bilinear height grid (btGridWaterSurface; also used for
 // a flat-sampled FFT ocean). The host packs the parameters in btOpenClBuoyancyBackend.cpp (packWater).
 //

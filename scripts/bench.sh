@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerate docs/benchmarks (issue 9): build the `buoyancy` tool (Release, float Bullet), run
+# Regenerate docs/benchmarks: build the `buoyancy` tool (Release, float Bullet), run
 # `buoyancy bench` (speed against error, Fig. 9, scaling; several minutes), then draw the PNG plots.
 # Usage: scripts/bench.sh [--quick] [--out DIR]      (default DIR: docs/benchmarks; BUILD_DIR default: build)
 # Plots need matplotlib (Debian python3-matplotlib: scripts/install-deps.sh --bench); without it the CSVs and

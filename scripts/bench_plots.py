@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Plots of docs/benchmarks (issue 9) from the CSVs `buoyancy bench` writes.
+"""Plots of docs/benchmarks from the CSVs `buoyancy bench` writes.
 Usage: bench_plots.py DIR   -> DIR/pareto_volume.png, DIR/pareto_cob.png, DIR/fig9_sphere_volume.png, DIR/scaling.png
-A configuration's error is its worst error over the poses, its time the mean (issue 9's rule)."""
+A configuration's error is its worst error over the poses, its time the mean."""
 import csv, math, os, sys
 from collections import OrderedDict
 
@@ -107,7 +107,7 @@ def scaling(d):
             ax.plot(x, [float(r["ns_per_body_substep_buoyancy"]) / 1e3 for r in rs], "--x", label=f"buoyancy, {t} thread(s){tag}")
     budget = 1e6 / 240 / 1000  # µs of wall time per body-substep for 1,000 bodies in real time at 240 Hz
     ax.axhline(budget, color="grey", lw=0.8)
-    ax.text(1, budget * 1.15, "real time, 1,000 bodies at 240 Hz (P3)", fontsize=7, color="grey")
+    ax.text(1, budget * 1.15, "real time, 1,000 bodies at 240 Hz", fontsize=7, color="grey")
     ax.set_xscale("log"); ax.set_yscale("log")
     ax.set_xlabel("bodies"); ax.set_ylabel("µs per body-substep (wall)")
     m = rows[0]

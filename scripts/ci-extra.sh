@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The reliability part of CI (issue 10), run by .ci/run after scripts/test.sh:
+# The reliability part of CI, run by .ci/run after scripts/test.sh:
 #   1. sanitizer build (AddressSanitizer + UndefinedBehaviorSanitizer, gcc, float, -O1 -g1) of the fast tests
 #      (ctest -LE "long|slow": the tests tagged [slow] repeat the same code paths for many seconds of physics
 #      and run unsanitized in scripts/test.sh; left out too: the install test, which re-builds a consumer, and

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Short (CI) or long libFuzzer run of every target in fuzz/ (issue 10).
+# Short (CI) or long libFuzzer run of every target in fuzz/.
 #   scripts/fuzz-run.sh [SECONDS_PER_TARGET]     default 45
 # Exit status: 0 nothing found, 1 a finding in our code (or the CLI broke its contract on an assimp input),
 # 3 the clang build failed.

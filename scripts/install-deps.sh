@@ -41,7 +41,7 @@ if [ "${1:-}" = "--bench" ]; then
   )
 fi
 # `scripts/install-deps.sh --cgal`: also CGAL 5.5 for the optional, GPL-licensed SDF water graph
-# (cmake -DBULLET_BUOYANCY_CGAL=ON, plugin/graph/cgal/, third_party_notes/cgal.md). Never in the default build.
+# (cmake -DBULLET_BUOYANCY_CGAL=ON, plugin/BulletBuoyancy/graph/cgal/, third_party_notes/cgal.md). Never in the default build.
 if [ "${1:-}" = "--cgal" ]; then
   PACKAGES+=(
     libcgal-dev            # CGAL 5.5 headers (Surface_mesh_segmentation; pulls Boost, GMP, MPFR)

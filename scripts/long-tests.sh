@@ -4,7 +4,7 @@
 #   PRECISIONS=double bash scripts/long-tests.sh
 # What runs (tests tagged [long]): the 1,000-body × 10^5-substep soak in Gerstner waves with water graphs
 # (tests/reliability/test_soak.cpp), the 3000-case property test (tests/bullet/test_hard_cases.cpp). Each
-# prints its numbers (ctest --verbose); the last results are in the closing note of issue 10.
+# prints its numbers (ctest --verbose); the last results are in docs/development.md.
 # Then long fuzzing: scripts/fuzz-run.sh with FUZZ_SECONDS per target (default 900; FUZZ_SECONDS=0 skips it).
 # (The fuzz build also has one CTest test per target labelled `long`: `ctest -L long` in build-fuzz.)
 # On a shared machine run it with `nice -n 10`; it takes hours on 2 cores.

@@ -1,6 +1,6 @@
 // Catch2 main shared by every test executable.
 //
-// Floating-point traps (issue 10, the CI's FPE run): when built with -DBULLET_BUOYANCY_TRAP_FP=ON, or when
+// Floating-point traps (the CI's FPE run): when built with -DBULLET_BUOYANCY_TRAP_FP=ON, or when
 // the environment has BULLET_BUOYANCY_TRAP_FP=1, the exceptions invalid, divide-by-zero and overflow raise
 // SIGFPE from the first test on, so a NaN or Inf produced anywhere fails the test at the instruction that
 // made it (run the test under gdb to see where). Underflow and inexact stay masked: they are normal in

@@ -1,8 +1,8 @@
 #include "benchmark/BenchShapes.h"
 
-#include "mesh/MeshImport.h"
-#include "mesh/MeshRepair.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/mesh/MeshImport.h>
+#include <BulletBuoyancy/mesh/MeshRepair.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 
 #include <cmath>
 #include <cstdio>

@@ -1,9 +1,9 @@
 #pragma once
 /// @file BenchShapes.h
-/// The shapes and poses of the speed-against-error benchmark (issue 9): analytic meshes from
+/// The shapes and poses of the speed-against-error benchmark: analytic meshes from
 /// PrimitiveMeshes, a real model from assimp-testmodels, the bundled low-poly boat, and high-poly cases.
 
-#include "mesh/TriangleMesh.h"
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
 
 #include <Eigen/Geometry>
 #include <string>

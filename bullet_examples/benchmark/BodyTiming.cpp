@@ -1,8 +1,8 @@
 #include "benchmark/BodyTiming.h"
 
-#include "bullet/btBuoyancyWorld.h"
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <btBulletDynamicsCommon.h>
 

@@ -5,7 +5,7 @@
 /// pose with a fixed velocity (so drag is on), reporting nanoseconds per call. Give the timed actions
 /// hydrostaticsInterval = 1: at a fixed pose the temporal level of detail would predict every other call.
 
-#include "bullet/btBuoyancyShape.h"
+#include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 
 #include <Eigen/Geometry>
 #include <memory>

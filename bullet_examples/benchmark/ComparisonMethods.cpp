@@ -1,6 +1,6 @@
 #include "benchmark/ComparisonMethods.h"
 
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
@@ -20,7 +20,7 @@ constexpr double kLinearDamping = 0.3;    // btBuoyancySettings::linearDamping d
 Eigen::Vector3d toE(const btVector3& v) { return {double(v.x()), double(v.y()), double(v.z())}; }
 
 /// Submerged volume of a sphere of radius r whose centre is `depth` below the surface (cap formula,
-/// DESIGN-NOTES 5).
+/// design.md 5).
 inline double sphereSubmerged(double r, double depth) {
     const double h = std::min(2 * r, std::max(0.0, depth + r));
     return M_PI * h * h * (3 * r - h) / 3.0;
@@ -232,7 +232,7 @@ void ComparisonAction::updateAction(btCollisionWorld*, btScalar dtStep) {
     const Eigen::Vector3d c = com.translation();
     m_last = m_probes ? probeHydrostatics(*m_probes, pose, *m_water, m_time, m_rho, m_g, c, m_ws)
                       : downwardFaceHydrostatics(*m_faces, pose, *m_water, m_time, m_rho, m_g, c, m_ws);
-    // Drag (DESIGN-NOTES 2.6) on the wetted elements.
+    // Drag (design.md 2.6) on the wetted elements.
     const std::size_t n = m_ws.wx.size();
     m_water->velocities(m_ws.wx.data(), m_ws.wy.data(), m_ws.wz.data(), n, m_time, m_ws.ux.data(), m_ws.uy.data(),
                         m_ws.uz.data());

@@ -1,6 +1,6 @@
 #pragma once
 /// @file ComparisonMethods.h
-/// The methods other engines use, implemented here only to be measured against ours (issue 9, DESIGN-NOTES
+/// The methods other engines use, implemented here only to be measured against ours (design.md
 /// 6); they are not part of the library.
 ///  - probes: point probes as spheres ("pontoons", the Unreal/Crest way). Each probe stands for a share of
 ///    the body's volume and pushes up with ρ g × the submerged volume of a sphere of that volume, applied at
@@ -10,9 +10,9 @@
 ///    and whose centroid is under water pushes up with ρ g depth(centroid) × its horizontal projected area,
 ///    applied at its centroid; upward-facing and side faces are ignored.
 /// Both come with drag of the same kind as the library's (quadratic pressure drag on front-facing elements
-/// plus linear damping, DESIGN-NOTES 2.6) so that a body-substep does comparable work.
+/// plus linear damping, design.md 2.6) so that a body-substep does comparable work.
 
-#include "mesh/TriangleMesh.h"
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
 
 #include <BulletDynamics/Dynamics/btActionInterface.h>
 

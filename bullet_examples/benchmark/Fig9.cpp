@@ -2,10 +2,10 @@
 
 #include "benchmark/ComparisonMethods.h"
 
-#include "bullet/btBuoyancyShape.h"
-#include "integrals/Hydrostatics.h"
-#include "mesh/PrimitiveMeshes.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBuoyancyShape.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <cmath>
 #include <functional>
@@ -32,7 +32,7 @@ void runFig9(const Fig9Options& o, const std::string& path, std::ostream& log) {
         double worst = 0;
         for (int i = 0; i < o.depths; ++i) {
             const double d = 2 * R * i / double(o.depths - 1);
-            const double analytic = M_PI * d * d * (3 * R - d) / 3.0;  // DESIGN-NOTES 5: spherical cap
+            const double analytic = M_PI * d * d * (3 * R - d) / 3.0;  // design.md 5: spherical cap
             const double v = volumeAt(d);
             const double err = 100.0 * (v - analytic) / vSphere;
             worst = std::max(worst, std::abs(err));

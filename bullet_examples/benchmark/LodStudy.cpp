@@ -3,14 +3,14 @@
 #include "benchmark/BodyTiming.h"
 #include "benchmark/Scaling.h"
 
-#include "bullet/btBuoyancyAction.h"
-#include "bullet/btBuoyancyShape.h"
-#include "bullet/btBuoyancyWorld.h"
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "integrals/Hydrostatics.h"
-#include "integrals/WaterPatch.h"
-#include "water/btGerstnerWaterSurface.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyShape.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/integrals/WaterPatch.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <algorithm>
 #include <chrono>
@@ -100,7 +100,7 @@ std::string runLodStudy(const std::vector<BenchShape>& shapes, const std::vector
                     ++count;
                 }
             std::fprintf(f, "%s,%zu,0,exact-queries,,0,0,0,%.0f\n", s.name.c_str(), s.mesh.triangleCount(), exactNs / count);
-            md << "- Waves, `" << s.name << "` (" << s.mesh.triangleCount() << " triangles, exact-mesh, P3 sea, " << count
+            md << "- Waves, `" << s.name << "` (" << s.mesh.triangleCount() << " triangles, exact-mesh, scaling sea, " << count
                << " poses × times): one exact query per vertex costs " << std::lround(exactNs / count / 1000.0)
                << " µs per hydrostatic evaluation;";
             for (int m : nodes) {
@@ -171,7 +171,7 @@ std::string runLodStudy(const std::vector<BenchShape>& shapes, const std::vector
         char b[700];
         std::snprintf(b, sizeof b,
                       "- Waves, the exact-mesh water model (`waves_mesh.csv`; the boat against itself subdivided 64×, 54,400 "
-                      "triangles, exact queries; P3 sea, 24 poses, worst volume / CoB error): exact queries per vertex — "
+                      "triangles, exact queries; scaling sea, 24 poses, worst volume / CoB error): exact queries per vertex — "
                       "850 triangles %.2g %% / %.2g %%, 3,400 %.2g %% / %.2g %%, 13,600 %.2g %% / %.2g %%; the default "
                       "evaluation (%d×%d patch) — %.2g %% / %.2g %%, %.2g %% / %.2g %%, %.2g %% / %.2g %%.\n",
                       worst[0][0], worst[0][1], worst[1][0], worst[1][1], worst[2][0], worst[2][1], nodes, nodes,
@@ -180,7 +180,7 @@ std::string runLodStudy(const std::vector<BenchShape>& shapes, const std::vector
         md << b;
         log << "  waves mesh model done\n";
     }
-    // ---- Exact-mesh: the moment tree against clipping every triangle (DESIGN-NOTES 2.5) ----------------------
+    // ---- Exact-mesh: the moment tree against clipping every triangle (design.md 2.5) ----------------------
     {
         std::FILE* f = openCsv(outDir + "/mesh_tree.csv",
                                "shape,triangles,water,pose,ns_clip_all,ns_tree,volume_difference_pct,cob_difference_pct,ns_vertex_shares,"
@@ -188,7 +188,7 @@ std::string runLodStudy(const std::vector<BenchShape>& shapes, const std::vector
         const btGerstnerWaterSurface sea(p3Sea());
         const btFlatWaterSurface flat(0.0);
         md << "- Exact-mesh through the moment tree (`mesh_tree.csv`; one hydrostatic evaluation, the same poses as "
-              "speed_vs_error in flat water and at 3 sea states of the P3 sea with the default 8×8 patch; mean time of "
+              "speed_vs_error in flat water and at 3 sea states of the scaling sea with the default 8×8 patch; mean time of "
               "clipping every triangle / the tree / the per-vertex shares, and the worst volume difference from clipping every "
               "triangle):";
         for (const BenchShape& s : shapes) {

@@ -1,7 +1,7 @@
 #pragma once
 /// @file LodStudy.h
-/// What the level-of-detail approximations of DESIGN-NOTES 2.5 cost in accuracy and buy in time (issue 9):
-///  - waves_lod.csv: exact-mesh hydrostatics in the P3 Gerstner sea with the water heights interpolated from a
+/// What the level-of-detail approximations of design.md 2.5 cost in accuracy and buy in time:
+///  - waves_lod.csv: exact-mesh hydrostatics in the scaling run's Gerstner sea with the water heights interpolated from a
 ///    per-body grid of M×M queries (btBuoyancySettings::waterPatchNodes) against the same clipping with one exact
 ///    query per vertex, at the same wave field (several poses and times);
 ///  - drag_lod.csv: the drag force and torque of btBuoyancyAction with the drag samples merged into at most K

@@ -1,11 +1,11 @@
 #include "benchmark/OpenClScaling.h"
 
-#include "bullet/btBuoyancyAction.h"
-#include "bullet/btBuoyancyShape.h"
-#include "bullet/btBuoyancyWorld.h"
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "opencl/btOpenClBuoyancyBackend.h"
-#include "water/btGerstnerWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyShape.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/bullet/btOpenClBuoyancyBackend.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 
 #include <btBulletDynamicsCommon.h>
 

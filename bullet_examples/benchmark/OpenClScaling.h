@@ -1,11 +1,11 @@
 #pragma once
 /// @file OpenClScaling.h
-/// Issue 7's benchmark rows: the OpenCL backend (PoCL on this machine) next to the CPU path for 1, 10, 100 and
+/// The OpenCL benchmark rows: the OpenCL backend (PoCL on this machine) next to the CPU path for 1, 10, 100 and
 /// 1,000 bodies of one sampled model in a Gerstner sea at 240 substeps/s, every action in the Bullet world (the
 /// device computes all bodies in one launch set per substep). Written to docs/benchmarks/opencl_scaling.csv.
 
-#include "bullet/btBuoyancySettings.h"
-#include "mesh/TriangleMesh.h"
+#include <BulletBuoyancy/bullet/btBuoyancySettings.h>
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
 
 #include <iosfwd>
 #include <string>

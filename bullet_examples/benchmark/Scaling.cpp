@@ -1,11 +1,11 @@
 #include "benchmark/Scaling.h"
 
-#include "bullet/btBuoyancyAction.h"
-#include "bullet/btBuoyancyWorld.h"
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "integrals/Hydrostatics.h"
-#include "water/btWaterSurface.h"
-#include "water/btGerstnerWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 
 #include <btBulletDynamicsCommon.h>
 
@@ -213,7 +213,7 @@ std::string scalingBreakdownMarkdown(const TriangleMesh& mesh, std::ostream& log
     const btBuoyancySettings st;  // the library defaults, as in the run
     const std::size_t points = exact ? mesh.vertices.size() : shape->getSamples().size();
     const std::size_t fineDrag = shape->getDragSamples().size();
-    // With the default level of detail (DESIGN-NOTES 2.5) a body-substep on Gerstner waves queries the heights at
+    // With the default level of detail (design.md 2.5) a body-substep on Gerstner waves queries the heights at
     // the waterPatchNodes² grid nodes (vertices, samples and drag clusters are interpolated from it) and the
     // velocities at waterVelocityProbes probes; without it (no-lod), one height query per vertex/sample and per
     // fine drag sample, one velocity query per fine drag sample.
@@ -228,7 +228,7 @@ std::string scalingBreakdownMarkdown(const TriangleMesh& mesh, std::ostream& log
                   "%.0f ns per velocity query (batches of 16384, one thread). Per body-substep the default level of detail "
                   "makes %.0f height queries (a %d×%d patch) and %.0f velocity queries (probes): ≈ %.0f µs of water queries; "
                   "without it (no-lod rows) %.0f height queries (%zu %s + %zu drag samples) and %.0f velocity queries: "
-                  "≈ %.0f µs. Budget for P3: ≈ 7 µs of buoyancy per body-substep on 2 cores.\n",
+                  "≈ %.0f µs. Budget for 1,000 bodies in real time: ≈ 7 µs of buoyancy per body-substep on 2 cores.\n",
                   btBuoyancyMethodName(shape->getMethod()), nsH, nsV, heightQueries, patchNodes, patchNodes,
                   velocityQueries, (heightQueries * nsH + velocityQueries * nsV) / 1000.0, oldHeights, points,
                   exact ? "mesh vertices" : "samples", fineDrag, oldVelocities, (oldHeights * nsH + oldVelocities * nsV) / 1000.0);

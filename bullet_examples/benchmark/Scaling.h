@@ -1,13 +1,13 @@
 #pragma once
 /// @file Scaling.h
-/// Issue 9's scaling run (and goal P3): N bodies of one model in a 4-wave Gerstner sea at 240 substeps/s,
+/// The scaling run (the 1,000-boat real-time figure): N bodies of one model in a 4-wave Gerstner sea at 240 substeps/s,
 /// colliding through their convex hulls, spread four body lengths apart; buoyancy of all bodies computed
 /// by one Bullet action that runs the per-body btBuoyancyActions across OpenMP threads (the library is not
 /// threaded; Debian's Bullet has no task scheduler, so Bullet's own step stays on one thread).
 
-#include "bullet/btBuoyancySettings.h"
-#include "mesh/TriangleMesh.h"
-#include "water/btGerstnerWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBuoyancySettings.h>
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 
 #include <iosfwd>
 #include <string>
@@ -51,7 +51,7 @@ struct ScalingRow {
     long contacts = 0;            ///< contact manifolds with points, summed over substeps
 };
 
-/// The sea of issue 9's P3: four Gerstner waves, amplitudes 1, 0.6, 0.35, 0.2 m, wavelengths 60, 35, 20, 10 m.
+/// The scaling sea: four Gerstner waves, amplitudes 1, 0.6, 0.35, 0.2 m, wavelengths 60, 35, 20, 10 m.
 std::vector<btGerstnerWave> p3Sea();
 
 /// Height of the mesh origin above flat water at which the unrotated mesh floats (V_sub = densityRatio · V, volume its

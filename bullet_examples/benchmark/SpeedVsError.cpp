@@ -4,11 +4,11 @@
 #include "benchmark/SubTexel.h"
 #include "oracles/PolyhedralOracle.h"
 
-#include "bullet/btBuoyancyAction.h"
-#include "bullet/btBuoyancyWorld.h"
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "integrals/Hydrostatics.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <chrono>
 #include <cmath>
@@ -25,7 +25,7 @@ namespace {
 constexpr double kRho = 1000.0;
 constexpr double kG = 9.81;
 
-/// Exact reference of one shape at one pose (DESIGN-NOTES 5: plane clipping of the same mesh).
+/// Exact reference of one shape at one pose (design.md 5: plane clipping of the same mesh).
 struct PoseReference {
     BenchPose pose;
     double volume = 0;
@@ -170,7 +170,7 @@ std::vector<SpeedErrorRow> runSpeedVsError(const std::vector<BenchShape>& shapes
             st.errorBudget = budget;
             library("lod", st);
         }
-        // Sub-texel waterline (DESIGN-NOTES 2.4; SubTexel.h): exact-coverage samples, wet part of straddling samples.
+        // Sub-texel waterline (design.md 2.4; SubTexel.h): exact-coverage samples, wet part of straddling samples.
         for (int n : o.textures) {
             btBuoyancySettings st;
             st.method = btBuoyancyMethod::ExactCoverage;

@@ -1,6 +1,6 @@
 #pragma once
 /// @file SpeedVsError.h
-/// Issue 9's speed-against-error table: every method × texture size × shape × pose, with the errors
+/// The speed-against-error table: every method × texture size × shape × pose, with the errors
 /// against the exact polyhedral clip of the same mesh (tests/oracles/PolyhedralOracle) and the time of one
 /// body-substep with drag on, one thread.
 

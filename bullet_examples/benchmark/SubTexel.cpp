@@ -1,6 +1,6 @@
 #include "benchmark/SubTexel.h"
 
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 

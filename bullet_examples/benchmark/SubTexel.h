@@ -1,15 +1,15 @@
 #pragma once
 /// @file SubTexel.h
-/// The sub-texel waterline method of DESIGN-NOTES 2.4 (benchmark rows `sub-texel`; not a library method):
+/// The sub-texel waterline method of design.md 2.4 (benchmark rows `sub-texel`; not a library method):
 /// exact-coverage samples, but a sample straddling the waterline counts only its wet part. Each sample is
 /// treated as a uniform strip along world y of half extent h_V = sqrt(area)/2 · sqrt(1 − n_y²) (a square
 /// piece of the sample's area, tilted by its normal; the drag ramp's estimate, no stored covariance). Its wet
 /// part is the fraction w = clamp((f − (y − h_V)) / 2h_V, 0, 1) with centroid y_w at the middle of the wet
-/// strip; the fields of DESIGN-NOTES 2.2 / 2.3 are summed as w × (their value at y_w), with the strip's own
+/// strip; the fields of design.md 2.2 / 2.3 are summed as w × (their value at y_w), with the strip's own
 /// variance L_w²/12 in the ∫y field. A horizontal sample (h_V = 0) is wet by its centre, as in exact-coverage.
 
-#include "bake/SurfaceSamples.h"
-#include "integrals/Hydrostatics.h"
+#include <BulletBuoyancy/bake/SurfaceSamples.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
 
 #include <BulletDynamics/Dynamics/btActionInterface.h>
 #include <Eigen/Geometry>

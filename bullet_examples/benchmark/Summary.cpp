@@ -90,7 +90,7 @@ std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::v
         }
     }
 
-    md << "\n## P1: nothing at least as accurate is more than 10 % faster than the default\n\n";
+    md << "\n## Nothing at least as accurate is more than 10 % faster than the default\n\n";
     bool p1 = true;
     for (const auto& s : shapes) {
         const ConfigStats* def = find(s, "default", -1);
@@ -114,9 +114,9 @@ std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::v
         for (const auto& b : close) md << "; as accurate and less than 2× slower (high-poly rule): " << b;
         md << '\n';
     }
-    md << "\nP1 overall: " << (p1 ? "holds" : "does not hold") << "\n";
+    md << "\nNothing as accurate and faster, overall: " << (p1 ? "holds" : "does not hold") << "\n";
 
-    md << "\n## P2: at ≤ 0.1 % volume error, cost ≤ 1/200 of texel-centre 1024²\n\n";
+    md << "\n## At ≤ 0.1 % volume error, cost ≤ 1/200 of texel-centre 1024²\n\n";
     bool p2 = true;
     int p2Shapes = 0;
     for (const auto& s : shapes) {
@@ -139,9 +139,9 @@ std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::v
         md << '\n';
     }
     if (p2Shapes == 0) md << "Not measured in this run (needs texel-centre 1024; `buoyancy bench` without --quick).\n";
-    else md << "\nP2 overall: " << (p2 ? "holds" : "does not hold") << "\n";
+    else md << "\nCost ≤ 1/200 of texel-centre 1024², overall: " << (p2 ? "holds" : "does not hold") << "\n";
 
-    md << "\n## P3: 1,000 bodies in real time on 2 cores\n\n";
+    md << "\n## 1,000 bodies in real time on 2 cores\n\n";
     const ScalingRow* p3 = nullptr;
     for (const auto& r : scaling)
         if (r.bodies >= 1000 && r.threads == 2 && r.variant.empty()) p3 = &r;
@@ -166,14 +166,14 @@ std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::v
                    << fmt("%.2f", one.nsPerBodySubstepBuoyancy / p3->nsPerBodySubstepBuoyancy) << "× faster, whole step "
                    << fmt("%.2f", one.nsPerBodySubstepTotal / p3->nsPerBodySubstepTotal) << "× (Bullet's own step stays on one thread).\n";
     }
-    // P3 with a longer temporal level of detail (hydrostaticsInterval K; its force error: temporal_lod.csv below).
+    // The 1,000-body run with a longer temporal level of detail (hydrostaticsInterval K; its force error: temporal_lod.csv below).
     for (const auto& r : scaling)
         if (r.bodies >= 1000 && r.threads == 2 && r.variant.rfind("interval ", 0) == 0)
             md << "- With hydrostaticsInterval " << r.variant.substr(9)
                << " (exact every K-th substep, predicted in between): " << fmt("%.0f", r.nsPerBodySubstepTotal)
                << " ns per body-substep on 2 threads, real-time factor " << fmt("%.3f", r.realtimeFactor) << " → "
                << (r.realtimeFactor >= 1 ? "real time" : "not real time") << ".\n";
-    // Level of detail on/off in the same run (DESIGN-NOTES 2.5): the "no-lod" rows use dragClusters = 0 and
+    // Level of detail on/off in the same run (design.md 2.5): the "no-lod" rows use dragClusters = 0 and
     // waterPatchNodes = 0 (every fine drag sample, one exact wave query per vertex/sample), the previous default.
     for (const auto& off : scaling) {
         if (off.variant != "no-lod") continue;

@@ -1,8 +1,8 @@
 #pragma once
 /// @file Summary.h
-/// Reducing the speed-against-error rows to per-configuration figures (issue 9: a configuration's error is
+/// Reducing the speed-against-error rows to per-configuration figures (a configuration's error is
 /// its worst volume and worst centre-of-buoyancy error over the poses, its time the mean) and checking the
-/// goals P1–P3 as measured, written as Markdown (docs/benchmarks/summary.md).
+/// the speed goals as measured, written as Markdown (docs/benchmarks/summary.md).
 
 #include "benchmark/Scaling.h"
 #include "benchmark/SpeedVsError.h"
@@ -25,7 +25,7 @@ struct ConfigStats {
 std::vector<ConfigStats> reduceConfigs(const std::vector<SpeedErrorRow>& rows);
 
 /// The Markdown summary: headline table (default, texel-centre 1024, exact-coverage 128, exact-mesh per
-/// shape), goals P1, P2 (from the table) and P3 (from the scaling rows), each with the numbers behind it.
+/// shape), the speed goals (accuracy and cost from the table, 1,000 bodies in real time from the scaling rows), each with the numbers behind it.
 std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::vector<ScalingRow>& scaling);
 
 }  // namespace buoyancy::bench

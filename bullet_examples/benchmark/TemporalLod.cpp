@@ -1,14 +1,14 @@
 #include "benchmark/TemporalLod.h"
 
 #include "benchmark/Scaling.h"
-#include "bullet/btBulletConvert.h"
-#include "bullet/btBuoyancyAction.h"
-#include "bullet/btBuoyancyWorld.h"
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "integrals/Hydrostatics.h"
-#include "mesh/PrimitiveMeshes.h"
-#include "water/btGerstnerWaterSurface.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBulletConvert.h>
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <btBulletDynamicsCommon.h>
 
@@ -127,7 +127,7 @@ std::vector<TemporalLodRow> runTemporalLod(const TriangleMesh& mesh, const std::
     const btGerstnerWaterSurface water(p3Sea());
     const double dt = 1.0 / 240.0;
     const double rho = 1000.0, g = 9.81;
-    // interval, tolerance, bodies, settle and measured seconds, placed as in the P3 scaling run
+    // interval, tolerance, bodies, settle and measured seconds, placed as in the scaling run
     std::vector<std::tuple<int, double, int, double, double, bool>> runs;
     for (const auto& [interval, tolerance] : o.configurations)
         runs.emplace_back(interval, tolerance, o.bodies, o.settleSeconds, o.seconds, false);
@@ -137,7 +137,7 @@ std::vector<TemporalLodRow> runTemporalLod(const TriangleMesh& mesh, const std::
         lo = lo.cwiseMin(v);
         hi = hi.cwiseMax(v);
     }
-    for (const auto& [interval, tolerance, bodyCount, settleSeconds, seconds, asP3] : runs) {
+    for (const auto& [interval, tolerance, bodyCount, settleSeconds, seconds, asScalingRun] : runs) {
         btBuoyancySettings settings;
         settings.hydrostaticsInterval = interval;
         if (tolerance > 0) settings.hydrostaticsReuseTolerance = tolerance;
@@ -149,13 +149,13 @@ std::vector<TemporalLodRow> runTemporalLod(const TriangleMesh& mesh, const std::
         bs.density = 500.0;
         std::vector<std::unique_ptr<btBuoyantBody>> bodies;
         std::vector<std::unique_ptr<btBuoyancyAction>> actions;
-        const double spacing = 4.0 * (hi - lo).maxCoeff();  // the P3 layout: four body lengths
-        const double floating = asP3 ? floatingHeight(mesh, shape->getUnitSolid().volume, bs.density / rho) : 0.0;
+        const double spacing = 4.0 * (hi - lo).maxCoeff();  // the scaling run's layout: four body lengths
+        const double floating = asScalingRun ? floatingHeight(mesh, shape->getUnitSolid().volume, bs.density / rho) : 0.0;
         const int side = int(std::ceil(std::sqrt(double(bodyCount))));
         for (int i = 0; i < bodyCount; ++i) {
             btTransform t = btTransform::getIdentity();
             t.setRotation(btQuaternion(btVector3(0, 1, 0), btScalar(0.7 * i)));
-            if (asP3) {
+            if (asScalingRun) {
                 const double x = spacing * (i % side), z = spacing * (i / side);
                 t.setOrigin(btVector3(btScalar(x), btScalar(water.height(x, z, 0.0) + floating), btScalar(z)));
             } else {
@@ -241,7 +241,7 @@ std::string temporalLodMarkdown(const std::vector<TemporalLodRow>& rows) {
     md << "\n## Temporal level of detail (hydrostaticsInterval; temporal_lod.csv)\n\n"
        << "Hydrostatics and drag evaluated exactly every K-th substep, extrapolated from the last four exact "
           "evaluations (a cubic) in between and moved to the actual pose through the hydrostatic stiffness "
-          "(btHydrostaticsHistory). Fleet in the P3 sea at 240 substeps/s, one thread, "
+          "(btHydrostaticsHistory). Fleet in the scaling sea at 240 substeps/s, one thread, "
           "Bullet's step included; force error of every applied substep against clipping every triangle with exact "
           "wave queries, % of ρ g V. Energy: an undamped bobbing box, worst drift over 60 s, % of its energy above "
           "rest; an undamped bobbing sphere, its heave amplitude over the last 5 s of 60 against the first 5 s.\n\n"

@@ -1,7 +1,7 @@
 #pragma once
 /// @file TemporalLod.h
-/// The temporal level of detail (btBuoyancySettings::hydrostaticsInterval, issue 9) measured: a small fleet of
-/// the scaling model in the P3 sea at 240 substeps/s, for several intervals K, one thread. Per K: the time per
+/// The temporal level of detail (btBuoyancySettings::hydrostaticsInterval) measured: a small fleet of
+/// the scaling model in the scaling sea at 240 substeps/s, for several intervals K, one thread. Per K: the time per
 /// body-substep of stepSimulation (Bullet included) and, at every substep after a 2 s settling, the error of the
 /// pressure force and torque the action applied against an exact evaluation (every triangle clipped, one exact
 /// wave query per vertex) at the body's pose and the water time of that substep. The errors of K = 1 are the
@@ -10,7 +10,7 @@
 /// gains or loses over 60 s at 240 substeps/s, against its initial energy above rest (the oracle: kinetic +
 /// gravity + the wall-sided buoyancy potential ρ g A d²/2); exact evaluation every substep keeps it to ≈ 0.01 %.
 
-#include "mesh/TriangleMesh.h"
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
 
 #include <iosfwd>
 #include <string>
@@ -26,7 +26,7 @@ struct TemporalLodOptions {
     std::vector<std::pair<int, double>> configurations{{1, 0.0}, {0, 0.0}, {4, 0.0}, {4, 0.002}, {8, 0.002},
                                                        {12, 0.002}, {16, 0.002}};
     int bodies = 5;              ///< boats, 17 m apart, varied headings
-    /// A last row at the default settings with this many boats placed as in the P3 scaling run (floating on the local
+    /// A last row at the default settings with this many boats placed as in the scaling run (floating on the local
     /// water surface, four body lengths apart), settled for fleetSettleSeconds, errors over fleetSeconds: the rare
     /// worst substeps of a fleet (0: none).
     int fleetBodies = 200;

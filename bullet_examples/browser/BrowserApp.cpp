@@ -285,26 +285,19 @@ void cameraInput(Browser& b, GLFWwindow* window) {
     (void)window;
 }
 
-int findEntry(const std::string& name) {
-    char* end = nullptr;
-    const long row = std::strtol(name.c_str(), &end, 10);
-    if (end && *end == '\0' && !name.empty() && row >= 0 && row < examples::exampleEntryCount()) return int(row);
-    for (int i = 0; i < examples::exampleEntryCount(); ++i)
-        if (name == examples::exampleEntry(i).name && examples::exampleEntry(i).createFunc) return i;
-    return -1;
-}
-
 }  // namespace
 
 int runBrowser(const BrowserOptions& options) {
     if (options.list) {
+        int number = 0;
         for (int i = 0; i < examples::exampleEntryCount(); ++i)
-            if (examples::exampleEntry(i).createFunc) std::cout << i << '\t' << examples::exampleEntry(i).name << '\n';
+            if (examples::exampleEntry(i).createFunc) std::cout << ++number << '\t' << examples::exampleEntry(i).name << '\n';
         return 0;
     }
-    const int first = findEntry(options.scene);
+    std::string sceneError;
+    const int first = examples::findExampleScene(options.scene, sceneError);
     if (first < 0) {
-        std::cerr << "error: --scene: no scene \"" << options.scene << "\" (buoyancy_browser --list)\n";
+        std::cerr << "error: --scene: " << sceneError << '\n';
         return 2;
     }
     if (!glfwInit()) {

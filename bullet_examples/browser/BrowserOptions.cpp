@@ -21,6 +21,16 @@ int integer(const std::string& flag, const char* text, int lo, int hi) {
 }
 }  // namespace
 
+const char* browserUsage() {
+    return "usage: buoyancy_browser [--scene NAME|NUMBER] [--size W H] [--screenshot FILE --frames N] [--list] [--help]\n"
+           "  --scene NAME|NUMBER  the scene to open first: its name or its number 1..N (--list prints both)\n"
+           "  --size W H           window size in pixels (default 1280 720)\n"
+           "  --screenshot FILE    render N frames (--frames, default 60) at 1/60 s each, save the window as a PNG\n"
+           "                       and exit (under Xvfb: xvfb-run -a buoyancy_browser ...)\n"
+           "  --list               print the scenes, numbered, and exit\n"
+           "  --help               print this and exit\n";
+}
+
 BrowserOptions parseBrowserOptions(int argc, char** argv) {
     BrowserOptions o;
     for (int i = 1; i < argc; ++i) {
@@ -44,8 +54,7 @@ BrowserOptions parseBrowserOptions(int argc, char** argv) {
         } else if (a == "--list") {
             o.list = true;
         } else if (a == "--help" || a == "-h") {
-            throw std::invalid_argument(
-                "usage: buoyancy_browser [--scene NAME] [--size W H] [--screenshot FILE --frames N] [--list]");
+            o.help = true;
         } else {
             throw std::invalid_argument("unknown option \"" + a + "\" (--scene, --size, --screenshot, --frames, --list)");
         }

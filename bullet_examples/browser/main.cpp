@@ -1,4 +1,4 @@
-// buoyancy_browser: the scene browser app (issue 8). See browser/BrowserOptions.h for the command line.
+// buoyancy_browser: the scene browser app. See browser/BrowserOptions.h for the command line.
 
 #include "browser/BrowserApp.h"
 #include "browser/BrowserOptions.h"
@@ -13,7 +13,12 @@ int main(int argc, char** argv) {
         options = parseBrowserOptions(argc, argv);
     } catch (const std::exception& e) {
         std::cerr << "error: " << e.what() << '\n';
+        std::cerr << browserUsage();
         return 2;
+    }
+    if (options.help) {
+        std::cout << browserUsage();
+        return 0;
     }
     return runBrowser(options);
 }

@@ -1,6 +1,6 @@
 #include "cli/BenchCommand.h"
 
-#include "cli/CliErrors.h"
+#include "scene/SceneErrors.h"
 
 #include "benchmark/BenchShapes.h"
 #include "benchmark/Fig9.h"
@@ -21,7 +21,7 @@
 namespace buoyancy::cli {
 
 void addBenchCommand(CLI::App& app, BenchOptions& options) {
-    CLI::App* b = app.add_subcommand("bench", "Speed against error benchmark (issue 9): CSVs and summary.md in DIR");
+    CLI::App* b = app.add_subcommand("bench", "Speed against error benchmark: CSVs and summary.md in DIR");
     b->add_flag("--quick", options.quick, "Reduced set for a smoke test (well under 30 s)");
     b->add_option("--out", options.out, "Output folder (created when missing)");
     b->add_option("--parts", options.parts, "Parts to run, comma-separated: speed, fig9, scaling, lod, opencl");
@@ -29,7 +29,7 @@ void addBenchCommand(CLI::App& app, BenchOptions& options) {
 
 int runBench(const BenchOptions& o) {
     using namespace buoyancy::bench;
-    bool speed = false, fig9 = false, scaling = false, opencl = false;  // opencl: issue 7 (owner ocl)
+    bool speed = false, fig9 = false, scaling = false, opencl = false;
     bool lod = false;
     {
         std::stringstream ss(o.parts);
@@ -93,7 +93,7 @@ int runBench(const BenchOptions& o) {
             so.maxBodySubsteps = 400;
             so.warmupSeconds = 1.0 / 60;
         }
-        // The README demo's model is the boat hull (850 triangles); issue 9's P3 asks for ≥ 1,000 triangles,
+        // The README demo's model is the boat hull (850 triangles); the scaling figure asks for ≥ 1,000 triangles,
         // so the scaling run uses it subdivided once (3,400 triangles, the same solid).
         const TriangleMesh boat = subdivideMesh(loadBoatHull());
         scale = runScaling(boat, "boat-x4", so, log);
@@ -134,7 +134,7 @@ int runBench(const BenchOptions& o) {
         breakdown = scalingBreakdownMarkdown(boat, log);
         writeScalingCsv((fs::path(o.out) / "scaling.csv").string(), scale);
     }
-    if (opencl) {  // issue 7: OpenCL (PoCL here) next to the CPU path, docs/benchmarks/opencl_scaling.csv
+    if (opencl) {  // OpenCL (PoCL here) next to the CPU path, docs/benchmarks/opencl_scaling.csv
         OpenClScalingOptions co;
         if (o.quick) {
             co.bodies = {1, 10};
@@ -151,7 +151,7 @@ int runBench(const BenchOptions& o) {
         boat.name = "boat-x4";
         boat.mesh = subdivideMesh(loadBoatHull());
         shapes.push_back(boat);
-        lodMd = "\n## Level of detail: error added and time saved (DESIGN-NOTES 2.5)\n\n" +
+        lodMd = "\n## Level of detail: error added and time saved (design.md 2.5)\n\n" +
                 runLodStudy(shapes, {"sphere", "boat", "boat-x4", "torus"}, o.out, o.quick, log);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

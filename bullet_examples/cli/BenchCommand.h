@@ -1,6 +1,6 @@
 #pragma once
 /// @file BenchCommand.h
-/// `buoyancy bench [--quick] [--out DIR]`: issue 9's benchmark. Writes into DIR
+/// `buoyancy bench [--quick] [--out DIR]`: the benchmark. Writes into DIR
 ///   speed_vs_error.csv   every method × texture × shape × pose: errors against the exact clip and ns per
 ///                        body-substep (drag on, one thread),
 ///   fig9_sphere_volume.csv  the paper's Fig. 9 (sphere R = 0.5, volume against depth),

@@ -1,14 +1,15 @@
 #include "cli/HydrostaticsCommand.h"
 
-#include "bullet/btBuoyancyShape.h"
-#include "cli/ChildProcessImport.h"
-#include "cli/CliErrors.h"
-#include "integrals/BuoyancyMethod.h"
-#include "integrals/Hydrostatics.h"
-#include "integrals/MassProperties.h"
-#include "mesh/MeshImport.h"
-#include "mesh/MeshRepair.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBuoyancyShape.h>
+#include "scene/ChildProcessImport.h"
+#include "scene/NumberFormat.h"
+#include "scene/SceneErrors.h"
+#include <BulletBuoyancy/integrals/BuoyancyMethod.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/integrals/MassProperties.h>
+#include <BulletBuoyancy/mesh/MeshImport.h>
+#include <BulletBuoyancy/mesh/MeshRepair.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <nlohmann/json.hpp>
 
@@ -40,7 +41,7 @@ void addHydrostaticsCommand(CLI::App& app, HydrostaticsOptions& o) {
                     "texel-centre | exact-coverage | exact-mesh | default (default: chosen per mesh)");
     sub->add_option("--texture", o.texture, "texture side N (N x N texels); ignored by exact-mesh");
     sub->add_option("--error-budget", o.error_budget,
-                    "automatic level of detail: worst volume error allowed, % of the body's volume (issue 9)");
+                    "automatic level of detail: worst volume error allowed, % of the body's volume");
     sub->add_option("--import-timeout", o.import_timeout, "time limit of the mesh import, s (default 10)");
     sub->add_flag("--json", o.json, "print one JSON object instead of a table");
 }
@@ -99,7 +100,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     settings.textureSize = o.texture.value_or(0);
     if (!std::isfinite(o.error_budget) || o.error_budget < 0)
         throw UsageError("--error-budget: must be a number >= 0 (% of the body's volume)");
-    settings.errorBudget = o.error_budget;  // issue 9: automatic level of detail
+    settings.errorBudget = o.error_budget;  // automatic level of detail
     const bool meshHadUvs = mesh.hasUvs();
     const std::size_t triangles = mesh.triangleCount();
     std::shared_ptr<const btBuoyancyShape> shape;
@@ -109,7 +110,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
         const btBuoyancyMethod wanted = btBuoyancyResolveMethod(settings, triangles);
         if (wanted == btBuoyancyMethod::ExactMesh) throw UsageError(o.mesh + ": " + e.what());
         // A mesh that passed prepareMesh encloses a positive volume: a texture method that fails on it had too
-        // few texels (issue 10, found by fuzzing).
+        // few texels (found by fuzzing).
         throw UsageError(o.mesh + ": texture " + std::to_string(btBuoyancyResolveTextureSize(settings, wanted)) +
                          " is too coarse for this mesh (" + e.what() + "); use a larger --texture");
     }
@@ -136,7 +137,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     const std::size_t sampleCount = shape->getSamples().size();
     if (method == btBuoyancyMethod::ExactMesh) {
         wet = treeHydrostatics(shape->getMomentTree(), shape->getMesh(), pose, water, 0.0, o.water_density, o.gravity,
-                               pose * dry.centre);  // as the action computes it (DESIGN-NOTES 2.5)
+                               pose * dry.centre);  // as the action computes it (design.md 2.5)
     } else {
         SampleWorkspace ws;
         wet = sampledHydrostatics(shape->getSamples(), pose, water, 0.0, o.water_density, o.gravity,
@@ -172,13 +173,15 @@ int runHydrostatics(const HydrostaticsOptions& o) {
                           {"force", vec(wet.force)},
                           {"torque", vec(wet.torque)},
                           {"waterline_area", wet.waterline_area}};
+        removeNegativeZeros(j);
         std::cout << j.dump(2) << '\n';
         return kExitOk;
     }
 
     auto v3 = [](const Eigen::Vector3d& v) {
         char buf[128];
-        std::snprintf(buf, sizeof buf, "(%.9g, %.9g, %.9g)", v.x(), v.y(), v.z());
+        std::snprintf(buf, sizeof buf, "(%.9g, %.9g, %.9g)", withoutNegativeZero(v.x()), withoutNegativeZero(v.y()),
+                      withoutNegativeZero(v.z()));
         return std::string(buf);
     };
     std::printf("mesh               %s\n", o.mesh.c_str());
@@ -188,19 +191,22 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     std::printf("  volume           %.9g m^3\n", dry.volume);
     std::printf("  centre of volume %s m (mesh frame)\n", v3(dry.centre).c_str());
     std::printf("  inertia / rho    [%.9g %.9g %.9g; %.9g %.9g %.9g; %.9g %.9g %.9g] m^5 (about the centre)\n",
-                dry.inertia(0, 0), dry.inertia(0, 1), dry.inertia(0, 2), dry.inertia(1, 0), dry.inertia(1, 1),
-                dry.inertia(1, 2), dry.inertia(2, 0), dry.inertia(2, 1), dry.inertia(2, 2));
+                withoutNegativeZero(dry.inertia(0, 0)), withoutNegativeZero(dry.inertia(0, 1)),
+                withoutNegativeZero(dry.inertia(0, 2)), withoutNegativeZero(dry.inertia(1, 0)),
+                withoutNegativeZero(dry.inertia(1, 1)), withoutNegativeZero(dry.inertia(1, 2)),
+                withoutNegativeZero(dry.inertia(2, 0)), withoutNegativeZero(dry.inertia(2, 1)),
+                withoutNegativeZero(dry.inertia(2, 2)));
     std::printf("method             %s", btBuoyancyMethodName(method));
     if (texture) std::printf(" (texture %dx%d, %zu samples)", texture, texture, sampleCount);
     std::printf("\nlevel of detail    %s", btBuoyancyPickLevelOfDetail(settings, triangles).description.c_str());
-    std::printf("\nwater              flat at y = %.9g m, density %.9g kg/m^3, g = %.9g m/s^2\n", o.water_height,
+    std::printf("\nwater              flat at y = %.9g m, density %.9g kg/m^3, g = %.9g m/s^2\n", withoutNegativeZero(o.water_height),
                 o.water_density, o.gravity);
     std::printf("submerged volume   %.9g m^3 (%.6g %% of the body)\n", isWet ? wet.submerged_volume : 0.0,
                 dry.volume > 0 ? 100.0 * (isWet ? wet.submerged_volume : 0.0) / dry.volume : 0.0);
     std::printf("centre of buoyancy %s\n", isWet ? (v3(wet.centre_of_buoyancy) + " m (world)").c_str() : "none (dry)");
     std::printf("force              %s N\n", v3(wet.force).c_str());
     std::printf("torque             %s N m (about the posed centre of volume)\n", v3(wet.torque).c_str());
-    std::printf("waterline area     %.9g m^2\n", wet.waterline_area);
+    std::printf("waterline area     %.9g m^2\n", withoutNegativeZero(wet.waterline_area));
     return kExitOk;
 }
 

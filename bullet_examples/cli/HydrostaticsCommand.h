@@ -21,7 +21,7 @@ struct HydrostaticsOptions {
     double gravity = 9.81;                    ///< m/s²
     std::string method = "default";           ///< texel-centre | exact-coverage | exact-mesh | default
     std::optional<int> texture;               ///< N (texture N×N); ignored with a warning for exact-mesh
-    double error_budget = 0;                  ///< automatic level of detail: worst volume error allowed, % (0: none; issue 9)
+    double error_budget = 0;                  ///< automatic level of detail: worst volume error allowed, % (0: none)
     double import_timeout = 10.0;             ///< s, time limit of the child process that runs assimp
     bool json = false;                        ///< print one JSON object instead of a table
 };

@@ -1,16 +1,16 @@
 // The `buoyancy` command-line tool: one executable, one subcommand per job.
 //   buoyancy hydrostatics MESH [...]   dry mass properties and flat-water hydrostatics
 //   buoyancy run SCENE.json --out DIR  headless scene runner (trajectory CSV)
-//   buoyancy bench [--quick] [--out DIR]  speed against error benchmark (issue 9)
+//   buoyancy bench [--quick] [--out DIR]  speed against error benchmark
 // Exit codes (every subcommand): 0 success, 2 bad input or usage, 3 internal failure.
 
 #include "cli/BenchCommand.h"
-#include "cli/CliErrors.h"
+#include "scene/SceneErrors.h"
 #include "cli/HydrostaticsCommand.h"
 #include "cli/RunCommand.h"
 
 #ifdef BUOYANCY_HAVE_RENDER
-#include "render/PngRecorder.h"  // `run --png` (issue 8); absent when OpenGL/EGL/stb were not found
+#include "render/PngRecorder.h"  // `run --png`; absent when OpenGL/EGL/stb were not found
 #endif
 
 #include <CLI/CLI.hpp>
@@ -18,10 +18,12 @@
 #include <exception>
 #include <functional>
 #include <iostream>
+#include <string>
 
 int main(int argc, char** argv) {
     using namespace buoyancy::cli;
-    CLI::App app{"buoyancy: real-time buoyancy for Bullet Physics (hydrostatics, scene runner)", "buoyancy"};
+    CLI::App app{"buoyancy: real-time buoyancy for Bullet Physics (hydrostatics, scene runner, benchmark)", "buoyancy"};
+    app.set_version_flag("--version", std::string("buoyancy ") + BUOYANCY_VERSION, "Print the version and exit");
     app.require_subcommand(1);
 
     HydrostaticsOptions hydro;
@@ -46,7 +48,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForVersion& e) {
-        return app.exit(e);
+        return app.exit(e);  // prints "buoyancy <version>" on stdout, exit 0
     } catch (const CLI::ParseError& e) {
         app.exit(e);  // prints the parser's message on stderr
         return kExitBadInput;

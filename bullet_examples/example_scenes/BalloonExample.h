@@ -2,12 +2,12 @@
 /// @file BalloonExample.h
 /// Paper Fig. 17: a light balloon rising in air (the scene's fluid is air, 1.2 kg/m³, with its "surface" far
 /// above). The balloon is deformable: it inflates over the first seconds and stretches along its motion, and its
-/// surface samples are re-baked from the animated vertices every frame (btBuoyancyDeformable, issue 7), so the
+/// surface samples are re-baked from the animated vertices every frame (btBuoyancyDeformable), so the
 /// lift follows the changing volume.
 
 #include "example_scenes/SceneFileExample.h"
 
-#include "bake/btBuoyancyDeformable.h"
+#include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
 
 #include <memory>
 

@@ -61,4 +61,35 @@ const ExampleEntry* findExampleEntry(const char* name) {
     return nullptr;
 }
 
+int exampleSceneCount() {
+    int n = 0;
+    for (const ExampleEntry& e : kEntries) n += e.createFunc ? 1 : 0;
+    return n;
+}
+
+int findExampleScene(const std::string& nameOrNumber, std::string& error) {
+    const int scenes = exampleSceneCount();
+    const std::string range = "1.." + std::to_string(scenes);
+    const bool digits = !nameOrNumber.empty() && nameOrNumber.size() < 10 &&
+                        nameOrNumber.find_first_not_of("0123456789") == std::string::npos;
+    if (digits) {
+        const int k = std::stoi(nameOrNumber);
+        int seen = 0;
+        for (int i = 0; i < exampleEntryCount(); ++i)
+            if (kEntries[i].createFunc && ++seen == k) return i;
+        error = "no scene number " + nameOrNumber + ": scenes are numbered " + range + " (buoyancy_browser --list)";
+        return -1;
+    }
+    for (int i = 0; i < exampleEntryCount(); ++i) {
+        if (nameOrNumber != kEntries[i].name) continue;
+        if (kEntries[i].createFunc) return i;
+        error = "\"" + nameOrNumber + "\" is a group heading, not a scene: give a scene's name or its number " + range +
+                " (buoyancy_browser --list)";
+        return -1;
+    }
+    error = "no scene \"" + nameOrNumber + "\": give a scene's name or its number " + range +
+            " (buoyancy_browser --list)";
+    return -1;
+}
+
 }  // namespace buoyancy::examples

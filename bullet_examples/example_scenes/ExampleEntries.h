@@ -5,6 +5,8 @@
 
 #include "example_scenes/ExampleInterface.h"
 
+#include <string>
+
 namespace buoyancy::examples {
 
 /// Number of rows of the table (headings included).
@@ -13,6 +15,12 @@ int exampleEntryCount();
 const ExampleEntry& exampleEntry(int i);
 /// The row whose name is `name` (case-sensitive), or null.
 const ExampleEntry* findExampleEntry(const char* name);
+/// Number of scenes (rows with a create function; headings not counted).
+int exampleSceneCount();
+/// The row of the scene named `nameOrNumber`, or of scene number k (1 ≤ k ≤ exampleSceneCount(), in table
+/// order, as `buoyancy_browser --list` numbers them). @return the row, or -1 with `error` saying why (a heading,
+/// a number out of range, an unknown name) and giving the valid range
+int findExampleScene(const std::string& nameOrNumber, std::string& error);
 
 ///@name Create functions, one per scene (paper figure in brackets)
 ExampleScene* BuoyInWavesCreateFunc(ExampleOptions& options);       ///< buoy_waves.json (Figs. 10–11)

@@ -6,8 +6,8 @@
 
 #include "example_scenes/ExampleInterface.h"
 
-#include "cli/SceneFile.h"
-#include "cli/SceneWorld.h"
+#include "scene/SceneFile.h"
+#include "scene/SceneWorld.h"
 #include "render/SceneFrame.h"
 
 #include <memory>

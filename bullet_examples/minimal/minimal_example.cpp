@@ -1,13 +1,6 @@
 // The smallest complete use of BulletBuoyancy (shown in README.md): load a mesh, make its body and its
 // buoyancy action, step a Bullet world, read the result. Usage: minimal_example [MESH] (default: a 1 m box).
-#include <bullet/btBuoyancyAction.h>
-#include <bullet/btBuoyancyShape.h>
-#include <bullet/btBuoyancyWorld.h>
-#include <bullet/btBuoyantBodyBuilder.h>
-#include <mesh/MeshImport.h>
-#include <mesh/MeshRepair.h>
-#include <mesh/PrimitiveMeshes.h>
-#include <water/btWaterSurface.h>
+#include <BulletBuoyancy/BulletBuoyancy.h>
 
 #include <btBulletDynamicsCommon.h>
 
@@ -27,7 +20,7 @@ int main(int argc, char** argv) {
     btFlatWaterSurface water(0.0);
     btBuoyancyWorld buoyancyWorld(&water, 1000.0, 9.81);
 
-    // 3. A closed mesh (untrusted files belong in a child process: see bullet_examples/cli/ChildProcessImport.h).
+    // 3. A closed mesh (untrusted files belong in a child process: see bullet_examples/scene/ChildProcessImport.h).
     buoyancy::TriangleMesh mesh = argc > 1 ? buoyancy::importMeshFile(argv[1]) : buoyancy::makeBoxMesh(1, 1, 1);
     buoyancy::prepareMesh(mesh, argc > 1 ? argv[1] : "box");
     auto shape = btBuoyancyShape::create(std::move(mesh));  // samples + mass properties, shareable

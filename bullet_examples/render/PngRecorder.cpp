@@ -1,6 +1,6 @@
 #include "render/PngRecorder.h"
 
-#include "cli/CliErrors.h"
+#include "scene/SceneErrors.h"
 #include "render/OffscreenContext.h"
 #include "render/PngWriter.h"
 #include "render/SceneFrame.h"
@@ -46,12 +46,12 @@ private:
 
 }  // namespace
 
-std::unique_ptr<cli::SceneFrameSink> makePngSink(const cli::RunOptions& options, const cli::Scene&) {
+std::unique_ptr<cli::SceneFrameSink> makePngSink(const std::string& folder, int width, int height, const cli::Scene&) {
     std::error_code ec;
-    std::filesystem::create_directories(options.png, ec);
-    if (!std::filesystem::is_directory(options.png)) throw cli::UsageError("--png: cannot create the folder " + options.png);
+    std::filesystem::create_directories(folder, ec);
+    if (!std::filesystem::is_directory(folder)) throw cli::UsageError("--png: cannot create the folder " + folder);
     try {
-        return std::make_unique<PngSink>(options.png, options.size.at(0), options.size.at(1));
+        return std::make_unique<PngSink>(folder, width, height);
     } catch (const cli::UsageError&) {
         throw;
     } catch (const std::exception& e) {

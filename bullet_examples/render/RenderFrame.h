@@ -4,7 +4,7 @@
 /// force arrows, the water surface as a height grid, the ground plane, optional surface-sample points and the
 /// camera. Built from a running scene by SceneFrame.h; drawn by SceneRenderer.h.
 
-#include "mesh/TriangleMesh.h"
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
 
 #include <Eigen/Core>
 #include <cstdint>

@@ -5,8 +5,8 @@
 /// (weight red at the centre of mass, buoyancy green at the centre of buoyancy, drag blue at the centre of
 /// mass) and, on request, the surface samples coloured wet (below the water height at their x, z) or dry.
 
-#include "cli/SceneFile.h"
-#include "cli/SceneWorld.h"
+#include "scene/SceneFile.h"
+#include "scene/SceneWorld.h"
 #include "render/RenderFrame.h"
 
 namespace buoyancy::render {

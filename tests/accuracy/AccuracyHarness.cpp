@@ -1,10 +1,10 @@
 #include "AccuracyHarness.h"
 
-#include "bullet/btBuoyancyShape.h"
-#include "integrals/Hydrostatics.h"
-#include "integrals/MassProperties.h"
+#include <BulletBuoyancy/bullet/btBuoyancyShape.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/integrals/MassProperties.h>
 #include "oracles/PolyhedralOracle.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <algorithm>
 #include <cmath>

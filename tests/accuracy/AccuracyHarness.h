@@ -1,10 +1,10 @@
 #pragma once
 // Measures a method's errors on a mesh against the independent polyhedral oracle (tests/oracles), over a set
-// of poses and water levels: the accuracy goals of issue 3 are checked with it, and the numbers it prints are
+// of poses and water levels: the accuracy goals are checked with it, and the numbers it prints are
 // the ones quoted in closing notes.
 
-#include "integrals/BuoyancyMethod.h"
-#include "mesh/TriangleMesh.h"
+#include <BulletBuoyancy/integrals/BuoyancyMethod.h>
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
 
 #include <string>
 #include <vector>

@@ -1,13 +1,13 @@
-// Issue 3's accuracy goals, end to end (import → UVs → bake → integrals), against the independent polyhedral
+// The accuracy goals, end to end (import → UVs → bake → integrals), against the independent polyhedral
 // oracle of tests/oracles on analytic shapes made by the library and on real models nobody here wrote
 // (Debian's assimp-testmodels).
 #include "AccuracyHarness.h"
-#include "bullet/btBuoyancySettings.h"
+#include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include "oracles/OracleMeshes.h"
 
-#include "mesh/MeshImport.h"
-#include "mesh/MeshRepair.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/mesh/MeshImport.h>
+#include <BulletBuoyancy/mesh/MeshRepair.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 
 #include <catch2/catch.hpp>
 
@@ -120,9 +120,9 @@ TEST_CASE("accuracy: the paper's texel-centre method at 256, 512, 1024 (report)"
         }
 }
 
-// ---- Automatic level of detail (issue 9; btBuoyancySettings::errorBudget, integrals/LevelOfDetail.h) ---------
+// ---- Automatic level of detail (btBuoyancySettings::errorBudget, integrals/LevelOfDetail.h) ---------
 // The model's errors come from docs/benchmarks; here the picked configuration is measured against the oracle.
-TEST_CASE("automatic level of detail: the picked configuration meets its budget on analytic shapes; tighter never "
+TEST_CASE("automatic level of detail: the picked configuration meets its budget on analytic shapes, tighter never "
           "picks cheaper-but-worse",
           "[accuracy][lod]") {
     const std::vector<std::pair<std::string, buoyancy::TriangleMesh>> shapes = {

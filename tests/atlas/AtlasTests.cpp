@@ -1,11 +1,11 @@
-// Tests of the UV layout check and the atlas generator (DESIGN-NOTES 1.2). Overlap, gaps and charts are
+// Tests of the UV layout check and the atlas generator (design.md 1.2). Overlap, gaps and charts are
 // re-derived here with the test's own geometry (separating axes, union–find), not the library's.
-#include "atlas/UvLayout.h"
+#include <BulletBuoyancy/atlas/UvLayout.h>
 #include "oracles/OracleMeshes.h"
 
 #include "bake/BakeTestMeshes.h"
-#include "bake/BakeSamples.h"
-#include "integrals/MassProperties.h"
+#include <BulletBuoyancy/bake/BakeSamples.h>
+#include <BulletBuoyancy/integrals/MassProperties.h>
 
 #include <catch2/catch.hpp>
 

@@ -1,7 +1,7 @@
-// Tests of bakeSurfaceSamples (DESIGN-NOTES 1.1) against sums computed here from the triangles.
-#include "bake/BakeSamples.h"
-#include "bake/PolygonClip.h"
-#include "atlas/UvLayout.h"
+// Tests of bakeSurfaceSamples (design.md 1.1) against sums computed here from the triangles.
+#include <BulletBuoyancy/bake/BakeSamples.h>
+#include <BulletBuoyancy/geometry/PolygonClip.h>
+#include <BulletBuoyancy/atlas/UvLayout.h>
 #include "oracles/OracleMeshes.h"
 
 #include "bake/BakeTestMeshes.h"
@@ -20,7 +20,7 @@ namespace {
 struct SampleSums {
     Eigen::Vector3d A = Eigen::Vector3d::Zero();        ///< Σ A_i
     double area = 0;                                    ///< Σ area_i
-    double volume = 0;                                  ///< Σ A^y y (DESIGN-NOTES 2.1)
+    double volume = 0;                                  ///< Σ A^y y (design.md 2.1)
     Eigen::Vector3d areaMoment = Eigen::Vector3d::Zero(); ///< Σ area_i p_i
 };
 
@@ -126,7 +126,7 @@ TEST_CASE("exact coverage with a generated atlas: volume of closed meshes", "[ba
         OracleMesh mesh;
         double tol;  // relative volume tolerance at N = 128
     };
-    // Curved meshes: texels mixing pieces of non-coplanar triangles cost O(h²) (DESIGN-NOTES 2.4 measured
+    // Curved meshes: texels mixing pieces of non-coplanar triangles cost O(h²) (design.md 2.4 measured
     // 0.003–0.03 % at 128² on parametric layouts; our atlas uses ~40 % of the texture, so h is larger).
     // Flat-faced charts (box, tetrahedron): pieces in a texel are coplanar, the volume is exact.
     std::vector<Case> cases = {{"box", oracleBox(1.0, 2.0, 0.5), 1e-9},

@@ -3,7 +3,7 @@
 /// UV-mapped closed meshes built inside the tests (independent of plugin/mesh) and exact reference sums
 /// over their triangles, for the bake and atlas tests.
 
-#include "mesh/TriangleMesh.h"
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
 #include "oracles/OracleMeshes.h"
 
 #include <Eigen/Geometry>

@@ -1,7 +1,7 @@
-// Smoke test of `buoyancy bench --quick` (issue 9): the tables it writes have the agreed columns and values
+// Smoke test of `buoyancy bench --quick`: the tables it writes have the agreed columns and values
 // that make physical sense. No timing assertions (times are only required to be positive and finite).
 #include "cli/BenchCommand.h"
-#include "cli/CliErrors.h"
+#include "scene/SceneErrors.h"
 
 #include <catch2/catch.hpp>
 
@@ -92,7 +92,7 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
                 CHECK(num(r, cc) < 1e-6);
                 CHECK(num(r, cq) < 1e-6);
             }
-            // DESIGN-NOTES 2.4: exact coverage at 128² is within 0.03 % on these shapes (0.1 % here: the goal).
+            // design.md 2.4: exact coverage at 128² is within 0.03 % on these shapes (0.1 % here: the goal).
             if (r[cm] == "exact-coverage" && tex == 128) CHECK(num(r, cv) < 0.1);
             // Any method worth listing stays within the body: errors below 100 % of V and of the diagonal.
             CHECK(num(r, cv) < 100);
@@ -159,7 +159,7 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
         for (std::size_t i = 1; i < t.size(); ++i)
             if (int(num(t[i], ck)) == 1) CHECK(num(t[i], ce) < 0.1);  // exact every substep: energy kept
     }
-    {  // waves_lod.csv / drag_lod.csv: the level of detail (DESIGN-NOTES 2.5) adds little error
+    {  // waves_lod.csv / drag_lod.csv: the level of detail (design.md 2.5) adds little error
         const Table w = readCsv(o.out + "/waves_lod.csv");
         const int cn = column(w, "nodes"), cv = column(w, "volume_error_pct");
         int patched = 0;

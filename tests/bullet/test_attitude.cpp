@@ -1,7 +1,7 @@
-// Attitudes against metacentric theory (DESIGN-NOTES 5): the long square log (flat / corner-down ranges),
+// Attitudes against metacentric theory (design.md 5): the long square log (flat / corner-down ranges),
 // a ballasted ball that rights itself and a uniform ball that is neutral in roll (paper Fig. 14).
 #include "oracles/BulletTestWorld.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include "oracles/PolyhedralOracle.h"
 
 #include <catch2/catch.hpp>
@@ -42,7 +42,7 @@ btBuoyancySettings exactMesh() {
 }  // namespace
 
 TEST_CASE("long square log: flat at s = 0.1, corner-down at s = 0.5", "[bullet][attitude]") {
-    // Oracle (DESIGN-NOTES 5, metacentric height of a square prism): face-down stable for
+    // Oracle (design.md 5, metacentric height of a square prism): face-down stable for
     // s < (3 − √3)/6 ≈ 0.2113 or s > 0.7887; corner-down stable for 9/32 < s < 23/32.
     const double L = 4, c = 0.5;
     const auto mesh = buoyancy::makeBoxMesh(L, c, c);
@@ -149,7 +149,7 @@ TEST_CASE("a ball with a low centre of mass rights itself", "[bullet][attitude]"
 
 TEST_CASE("a uniform ball is neutral in roll (paper Fig. 14): no righting moment", "[bullet][attitude]") {
     // Uniform sphere: COM at the centre, buoyancy through the centre: zero pressure torque at any tilt. A
-    // wrong centre of buoyancy (e.g. the mesh sliced unrotated, DESIGN-NOTES 6 item 4) would right it like
+    // wrong centre of buoyancy (e.g. the mesh sliced unrotated, design.md 6 item 4) would right it like
     // the ballasted ball. Rotation of a sphere is (almost) undamped, so the faceted mesh's tiny torques let
     // it wander; what must not happen is a systematic return to its starting ("upright") attitude.
     const double R = 0.5;

@@ -1,7 +1,7 @@
-// The density-map mass model (issue 4: "solid / shell / density map"): a shell whose areal density varies over
+// The density-map mass model ("solid / shell / density map"): a shell whose areal density varies over
 // the surface. Oracle: a hemispherical shell has mass σ 2πR² and its centre R/2 from the sphere's centre.
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 
 #include <catch2/catch.hpp>
 

@@ -1,7 +1,7 @@
-// Dynamics against physical laws (DESIGN-NOTES 5, 6): heave period, terminal velocity, energy,
+// Dynamics against physical laws (design.md 5, 6): heave period, terminal velocity, energy,
 // neutral buoyancy, symmetry, and the in-place mass change.
 #include "oracles/BulletTestWorld.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include "oracles/PolyhedralOracle.h"
 
 #include <catch2/catch.hpp>

@@ -1,6 +1,6 @@
-// Equilibrium drafts and attitudes against the analytic / exact-polyhedral oracles (DESIGN-NOTES 5).
+// Equilibrium drafts and attitudes against the analytic / exact-polyhedral oracles (design.md 5).
 #include "oracles/BulletTestWorld.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include "oracles/PolyhedralOracle.h"
 
 #include <catch2/catch.hpp>

@@ -1,9 +1,9 @@
-// Hard cases (issue 4, DESIGN-NOTES 6 items 1–3): extreme density ratios and time steps, a 100:1 plank,
+// Hard cases (design.md 6 items 1–3): extreme density ratios and time steps, a 100:1 plank,
 // drops, bodies starting submerged or above the water, a light body released deep, and a seeded property
 // test over random poses, velocities and densities. Each must stay finite and bounded and end at rest
 // (floating at its analytic draft, or on the ground when it sinks).
 #include "oracles/BulletTestWorld.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include "oracles/PolyhedralOracle.h"
 
 #include <catch2/catch.hpp>
@@ -140,7 +140,7 @@ TEST_CASE("hard: dropped from 10 m, started above and fully under the water", "[
     }
 }
 
-TEST_CASE("hard: a light body released 5 m deep rises and is not flung (DESIGN-NOTES 6.1-2)", "[bullet][hard]") {
+TEST_CASE("hard: a light body released 5 m deep rises and is not flung (design.md 6.1-2)", "[bullet][hard]") {
     const double R = 0.3;
     const auto mesh = buoyancy::makeSphereMesh(R, 32, 16);
     auto shape = btBuoyancyShape::create(mesh, exactMesh());
@@ -178,7 +178,7 @@ TEST_CASE("hard: a light body released 5 m deep rises and is not flung (DESIGN-N
 
 namespace {
 
-/// The property test's seabed (issue 10): a static box whose top face is y = top (friction 0.8, rolling 0.1,
+/// The property test's seabed: a static box whose top face is y = top (friction 0.8, rolling 0.1,
 /// spinning 0.05 as BulletTestWorld::addGround), with Bullet's polyhedral features, so that a body whose hull
 /// also has them (usePolyhedralContacts) touches it through polyhedral contact clipping: the contact
 /// manifold holds the whole touching face, leading edge included. Against a btStaticPlaneShape, Bullet 3.24
@@ -232,7 +232,7 @@ CaseResult randomCase(std::mt19937& rng, const std::vector<std::shared_ptr<const
                       int index) {
     std::uniform_real_distribution<double> U(0, 1);
     const std::size_t k = std::min(shapes.size() - 1, std::size_t(U(rng) * shapes.size()));
-    // Density ratio log-uniform in [0.01, 20] (issue 4's extremes).
+    // Density ratio log-uniform in [0.01, 20] (the hard cases' extremes).
     const double s = std::exp(std::log(0.01) + U(rng) * (std::log(20.0) - std::log(0.01)));
     const btVector3 p(btScalar(U(rng) * 2 - 1), btScalar(-3 + 6 * U(rng)), btScalar(U(rng) * 2 - 1));
     const btVector3 axis(btScalar(U(rng) - 0.5), btScalar(U(rng) - 0.5), btScalar(U(rng) - 0.5) + btScalar(1e-3));
@@ -315,11 +315,11 @@ void propertyTest(int cases, std::uint32_t seed, const std::vector<double>& hzCh
 TEST_CASE("property: random poses, velocities and densities stay finite, bounded and come to rest",
           "[bullet][hard][property][slow]") {
     // 20 s: on a plane seabed heavy cylinders thrown spinning needed ~30 s to stop rolling (40 s was used);
-    // on the polyhedral seabed all 200 are at rest after 15 s (issue 10).
+    // on the polyhedral seabed all 200 are at rest after 15 s.
     propertyTest(200, 12345u, {60.0}, 20.0);
 }
 
-// Long run (issue 10, scripts/long-tests.sh): dt ∈ {1/30, 1/60, 1/120, 1/240}, 20 s, seed 987654. Before the
+// Long run (scripts/long-tests.sh): dt ∈ {1/30, 1/60, 1/120, 1/240}, 20 s, seed 987654. Before the
 // seabed fixes (one contact point per convex-vs-plane pair, COM-height bound): in the first 1020 cases 34
 // failed (18 0.3 m cubes spinning on the seabed at 30 Hz, 13 cylinders rolling, 3 below the loose COM bound).
 // With several contact points per plane contact and the penetration bound (|v| + |ω| R)·dt: 3000 cases,
@@ -347,7 +347,7 @@ TEST_CASE("property: random poses, velocities and densities stay finite, bounded
 // 16-gon, angular momentum kept about the new edge, gives ((1/2 + cos 22.5°)/1.5)² = 0.90 per edge, ×0.2
 // per second at 6 rad/s). With it: 3000 cases, 0 non-finite, 0 unbounded, 5 not at rest, 35 s.
 // OPEN (a different cause, in the buoyancy coupling): the 5 are 0.3 m cubes at s ≈ 0.011 floating at 30 Hz
-// (draft 3.4 mm: heave ω·dt ≈ 1.5 with added mass, roll ω·dt ≈ 1.2 with none, DESIGN-NOTES 2.7), rocking on
+// (draft 3.4 mm: heave ω·dt ≈ 1.5 with added mass, roll ω·dt ≈ 1.2 with none, design.md 2.7), rocking on
 // at 0.13-0.15 m/s and 1.5-1.9 rad/s. Case 2971: without drag the buoyancy impulses alone drive it to 4 m/s;
 // at 60 Hz, or with linear damping, added mass or the predicted-velocity drag evaluation turned off, it rests.
 // Each failing case is printed with its parameters; tagged [!mayfail] until that is understood.
@@ -356,7 +356,7 @@ TEST_CASE("property (long): thousands of random cases", "[bullet][hard][property
 }
 
 
-// A shallow-draft light body must still feel sideways drag (DESIGN-NOTES 6 item 10): drag samples wet by a
+// A shallow-draft light body must still feel sideways drag (design.md 6 item 10): drag samples wet by a
 // ramp over their vertical extent, not all-or-nothing by their centre (which left a 1 x 0.4 x 0.6 box at
 // s = 0.03 drifting at 0.13-0.22 m/s after 15 s).
 TEST_CASE("a shallow-draft light box pushed sideways comes to rest", "[bullet][hard]") {
@@ -373,7 +373,7 @@ TEST_CASE("a shallow-draft light box pushed sideways comes to rest", "[bullet][h
         REQUIRE(tr.finite);
         CHECK(tr.speed < 0.01);
     }
-    SECTION("a 7 cm box at s = 0.01 and 60 Hz (s c ~ g dt^2 / 4, DESIGN-NOTES 2.7)") {
+    SECTION("a 7 cm box at s = 0.01 and 60 Hz (s c ~ g dt^2 / 4, design.md 2.7)") {
         const double cs = 0.07;
         auto small = btBuoyancyShape::create(buoyancy::makeBoxMesh(cs, cs, cs), exactMesh());
         BulletTestWorld w;

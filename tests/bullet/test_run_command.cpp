@@ -1,7 +1,7 @@
 // The scene runner: CSV format, output times, determinism, and errors that name the key.
-#include "cli/CliErrors.h"
+#include "scene/SceneErrors.h"
 #include "cli/RunCommand.h"
-#include "cli/SceneFile.h"
+#include "scene/SceneFile.h"
 
 #include <catch2/catch.hpp>
 

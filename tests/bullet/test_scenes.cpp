@@ -4,8 +4,8 @@
 #include <unistd.h>
 #include "oracles/BulletTestWorld.h"
 #include "cli/RunCommand.h"
-#include "cli/SceneFile.h"
-#include "mesh/PrimitiveMeshes.h"
+#include "scene/SceneFile.h"
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 
 #include <catch2/catch.hpp>
 
@@ -263,7 +263,7 @@ TEST_CASE("default sphere volume within 0.1 % of 4/3 pi R^3", "[bullet][scenes]"
 
 TEST_CASE("substeps per frame 1, 4, 8 give the same dynamic motion", "[bullet][scenes][substeps]") {
     // A tumbling cylinder dropped into the water with drag and added mass on: impulses per substep make the
-    // motion depend only on the substeps, not on how frames group them (DESIGN-NOTES 3).
+    // motion depend only on the substeps, not on how frames group them (design.md 3).
     using namespace buoyancy_test;
     btBuoyancySettings bs;
     bs.method = btBuoyancyMethod::ExactMesh;

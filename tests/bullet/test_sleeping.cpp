@@ -1,11 +1,11 @@
-// Sleeping (issue 4: "keeps wave-driven bodies awake, lets calm floating bodies sleep"). At rest on the water,
-// Bullet's stored velocity is +g·dt (symplectic Euler, DESIGN-NOTES 3), above Bullet's usual thresholds at
+// Sleeping ("keeps wave-driven bodies awake, lets calm floating bodies sleep"). At rest on the water,
+// Bullet's stored velocity is +g·dt (symplectic Euler, design.md 3), above Bullet's usual thresholds at
 // 240 Hz; the action judges rest by the real motion of the COM instead.
 #include "oracles/BulletTestWorld.h"
-#include "mesh/PrimitiveMeshes.h"
-#include "water/btGerstnerWaterSurface.h"
-#include "bullet/btBulletConvert.h"
-#include "integrals/Hydrostatics.h"
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/bullet/btBulletConvert.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
 
 #include <catch2/catch.hpp>
 
@@ -54,7 +54,7 @@ TEST_CASE("a body in waves is kept awake", "[bullet][sleeping]") {
     w.water().setWater(nullptr);
 }
 
-// Issue 9 (btBuoyancySettings::waterPatchNodesPerWavelength): in waves short against the body the patch would need
+// btBuoyancySettings::waterPatchNodesPerWavelength: in waves short against the body the patch would need
 // more nodes than the body has points; the action then queries the surface exactly, so its result is the exact clip
 // at its pose (an 8-vertex box in 1.5 m waves: 16 nodes per wavelength over its 1.4 m footprint is a 19×19 patch).
 TEST_CASE("short waves: a low-poly body is queried exactly, not through a larger patch", "[bullet][lod]") {

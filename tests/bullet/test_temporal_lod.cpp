@@ -1,12 +1,12 @@
-// Temporal level of detail (issue 9; btBuoyancySettings::hydrostaticsInterval, bullet/btHydrostaticsHistory):
+// Temporal level of detail (btBuoyancySettings::hydrostaticsInterval, bullet/btHydrostaticsHistory):
 // the extrapolation is exact on cubics, and in a simulation the predicted hydrostatics stay within the
 // tolerance of an exact evaluation at the same pose and time; contacts/teleports, stiff light bodies and bad
 // settings fall back to exact evaluation or a clear error.
 #include "oracles/BulletTestWorld.h"
-#include "bullet/btBulletConvert.h"
-#include "bullet/btHydrostaticsHistory.h"
-#include "mesh/PrimitiveMeshes.h"
-#include "water/btGerstnerWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBulletConvert.h>
+#include <BulletBuoyancy/bullet/btHydrostaticsHistory.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 
 #include <catch2/catch.hpp>
 
@@ -149,7 +149,7 @@ TEST_CASE("hydrostatics history: the extrapolation reproduces cubics in time", "
     CHECK(gap.size() == 0);
 }
 
-TEST_CASE("hydrostatics history: volumes and areas extrapolated below zero are clamped; deviations", "[bullet][temporal]") {
+TEST_CASE("hydrostatics history: volumes and areas extrapolated below zero are clamped, deviations", "[bullet][temporal]") {
     btHydrostaticsHistory history;
     for (int n = 0; n < 4; ++n) {
         btHydrostaticsSnapshot s;
@@ -412,7 +412,7 @@ TEST_CASE("interval 4 in flat water: the same equilibrium draft as exact every s
 }
 
 TEST_CASE("defaults: an undamped bobbing sphere keeps its amplitude (energy) over a minute", "[bullet][temporal]") {
-    // Oracle: an undamped oscillator keeps its energy, so its amplitude; issue 2 allows 1 % of energy a minute
+    // Oracle: an undamped oscillator keeps its energy, so its amplitude; the goal allows 1 % of energy a minute
     // (0.5 % of amplitude). The sphere's waterline grows and shrinks with its draft: its restoring force is not
     // the linear part the prediction's heave correction makes exact, so what is left is the extrapolated remainder.
     const btBuoyancySettings s = undampedDefaults();  // the automatic interval: every 8th substep at 240/s

@@ -34,7 +34,7 @@ TEST_CASE("hydrostatics: half-submerged 2x1x1 box matches Archimedes", "[cli]") 
             CHECK(j["submerged"]["volume"].get<double>() == Approx(1.0).epsilon(tol));
             CHECK(j["submerged"]["centre_of_buoyancy"][1].get<double>() == Approx(-0.25).epsilon(10 * tol));
             CHECK(j["submerged"]["force"][1].get<double>() == Approx(1000 * 9.81).epsilon(tol));
-            // Horizontal force: zero by symmetry; the sampled methods' waterline error is O(h^2) (DESIGN-NOTES 2.4).
+            // Horizontal force: zero by symmetry; the sampled methods' waterline error is O(h^2) (design.md 2.4).
             const double weight = 1000 * 9.81 * 1.0;
             CHECK(std::fabs(j["submerged"]["force"][0].get<double>()) < (tol > 1e-9 ? 1e-3 : 1e-6) * weight);
             CHECK(std::fabs(j["submerged"]["force"][2].get<double>()) < (tol > 1e-9 ? 1e-3 : 1e-6) * weight);
@@ -77,7 +77,7 @@ TEST_CASE("hydrostatics: heeled box torque matches the wall-sided GZ formula", "
     const std::string obj = scratchDir("tilt") + "/box.obj";
     writeBoxObj(obj, 2.0, 1.0, 1.0);
     // Square section (1 x 1), half submerged (s = 0.5): GM = KB + BM - KG = 0.25 + 1/6 - 0.5 < 0, the log is
-    // unstable flat (DESIGN-NOTES 5). Heeled by phi about x, the torque about the centre of volume is
+    // unstable flat (design.md 5). Heeled by phi about x, the torque about the centre of volume is
     // tau_x = -rho g V GZ with the wall-sided GZ = sin(phi) (GM + BM tan^2(phi) / 2), exact for a box while no
     // edge emerges; and a wide box (4 m beam) at the same draft is stable: its torque must turn it back.
     const double phi = 10 * M_PI / 180;

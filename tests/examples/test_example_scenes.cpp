@@ -1,4 +1,4 @@
-// Issue 8: every example scene runs headless (the same classes the browser shows) with no NaN and its
+// Every example scene runs headless (the same classes the browser shows) with no NaN and its
 // expected outcome. Expectations come from physics, not from earlier runs: a buoy in waves follows them, water
 // entering at the bow pitches the boat bow-down, a uniform ball has no righting moment (buoyancy acts through its
 // centre) while a bottom-heavy one does, a balloon lighter than the air it displaces rises, a falling crate sends

@@ -1,4 +1,4 @@
-// Issue 8: the offscreen renderer (`buoyancy run --png`) and the browser's screenshot under Xvfb produce
+// The offscreen renderer (`buoyancy run --png`) and the browser's screenshot under Xvfb produce
 // pictures that show water and the body. Both run as child processes (the tests' floating-point traps and
 // sanitizers stay out of Mesa's llvmpipe).
 

@@ -1,15 +1,22 @@
-// Issue 8 scene keys: "ground.normal" (a sloped beach) and "camera" (the view of the pictures and the browser),
+// Scene keys "ground.normal" (a sloped beach) and "camera" (the view of the pictures and the browser),
 // and the browser's command line. Bad values are errors naming the key (docs/bad-input.md).
 
 #include "browser/BrowserOptions.h"
-#include "cli/CliErrors.h"
-#include "cli/SceneFile.h"
-#include "cli/SceneWorld.h"
+#include "example_scenes/ExampleEntries.h"
+#include "scene/SceneErrors.h"
+#include "scene/SceneFile.h"
+#include "scene/SceneWorld.h"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sys/wait.h>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 using namespace buoyancy;
 using Catch::Matchers::Contains;
@@ -74,3 +81,67 @@ TEST_CASE("browser command line: values and errors", "[examples]") {
     CHECK_THROWS_WITH(parseArgs({"--size", "64x", "360"}), Contains("--size"));
     CHECK_THROWS_WITH(parseArgs({"--fullscreen"}), Contains("unknown option \"--fullscreen\""));
 }
+
+TEST_CASE("browser command line: --help, and --scene by name or by number 1..N", "[examples]") {
+    std::vector<std::string> a = {"buoyancy_browser", "--help"};
+    std::vector<char*> argv;
+    for (auto& s : a) argv.push_back(s.data());
+    const browser::BrowserOptions help = browser::parseBrowserOptions(int(argv.size()), argv.data());
+    CHECK(help.help);
+    CHECK_THAT(std::string(browser::browserUsage()), Contains("--scene NAME|NUMBER"));
+
+    // The scenes in table order, counted here from the table itself (rows with a create function).
+    std::vector<int> sceneRows;
+    for (int i = 0; i < examples::exampleEntryCount(); ++i)
+        if (examples::exampleEntry(i).createFunc) sceneRows.push_back(i);
+    const int n = int(sceneRows.size());
+    REQUIRE(n == examples::exampleSceneCount());
+    REQUIRE(n >= 2);
+    const std::string range = "1.." + std::to_string(n);
+    std::string error;
+    CHECK(examples::findExampleScene("1", error) == sceneRows.front());
+    CHECK(examples::findExampleScene(std::to_string(n), error) == sceneRows.back());
+    CHECK(examples::findExampleScene("Crate splash", error) ==
+          int(examples::findExampleEntry("Crate splash") - &examples::exampleEntry(0)));
+    for (const std::string bad : {std::string("0"), std::to_string(n + 1), std::string("99999")}) {
+        error.clear();
+        CHECK(examples::findExampleScene(bad, error) == -1);
+        CHECK_THAT(error, Contains("scenes are numbered " + range));
+    }
+    // A group heading is not a scene.
+    int heading = -1;
+    for (int i = 0; i < examples::exampleEntryCount() && heading < 0; ++i)
+        if (!examples::exampleEntry(i).createFunc) heading = i;
+    REQUIRE(heading >= 0);
+    error.clear();
+    CHECK(examples::findExampleScene(examples::exampleEntry(heading).name, error) == -1);
+    CHECK_THAT(error, Contains("is a group heading, not a scene"));
+    CHECK_THAT(error, Contains(range));
+    error.clear();
+    CHECK(examples::findExampleScene("nope", error) == -1);
+    CHECK_THAT(error, Contains("no scene \"nope\""));
+    CHECK_THAT(error, Contains(range));
+}
+
+#ifdef BUOYANCY_BROWSER_EXE
+TEST_CASE("buoyancy_browser --help and --list exit 0 without a display, a bad --scene exits 2 naming the range", "[examples]") {
+    const std::string out = (std::filesystem::temp_directory_path() / "buoyancy_browser_help.txt").string();
+    auto run = [&](const std::string& args) {
+        const int status = std::system((std::string("DISPLAY= ") + BUOYANCY_BROWSER_EXE + " " + args + " >" + out + " 2>&1").c_str());
+        std::ifstream f(out);
+        std::stringstream s;
+        s << f.rdbuf();
+        return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str());
+    };
+    const auto help = run("--help");
+    CHECK(help.first == 0);
+    CHECK_THAT(help.second, Contains("usage: buoyancy_browser"));
+    const auto list = run("--list");
+    CHECK(list.first == 0);
+    CHECK_THAT(list.second, Contains("1\t"));
+    const auto zero = run("--scene 0");
+    CHECK(zero.first == 2);
+    CHECK_THAT(zero.second, Contains("error: --scene: no scene number 0: scenes are numbered 1.." +
+                                     std::to_string(examples::exampleSceneCount())));
+}
+#endif

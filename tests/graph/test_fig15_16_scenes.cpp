@@ -6,18 +6,18 @@
 // - the mass properties are recomputed only when the map changes (one per update interval);
 // - the plush toy only gains water while it floats, its mass is dry + ρ_w × water, it floats at
 //   Archimedes' draft (submerged volume = mass / ρ_w), so its draft grows, and it goes under once saturated
-//   because its dry mass exceeds ρ_w × its material volume (DESIGN-NOTES 5).
+//   because its dry mass exceeds ρ_w × its material volume (design.md 5).
 #include <catch2/catch.hpp>
 
-#include "bullet/btBuoyancyAction.h"
-#include "bullet/btBuoyancyWorld.h"
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "cli/CliErrors.h"
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include "scene/SceneErrors.h"
 #include "cli/RunCommand.h"
-#include "cli/SceneFile.h"
-#include "graph/btTimeVaryingMassAction.h"
-#include "mesh/PrimitiveMeshes.h"
-#include "water/btWaterSurface.h"
+#include "scene/SceneFile.h"
+#include <BulletBuoyancy/bullet/btTimeVaryingMassAction.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <btBulletDynamicsCommon.h>
 
@@ -94,7 +94,7 @@ double spotTiltDegrees(const std::map<std::string, double>& r, double degreesPer
 
 }  // namespace
 
-TEST_CASE("Fig. 15 ball: the heavy spot stays down as the density map turns; a still map leaves it still", "[graph][cli]") {
+TEST_CASE("Fig. 15 ball: the heavy spot stays down as the density map turns, a still map leaves it still", "[graph][cli]") {
     const auto rows = runShipped("variable_density_ball.json", 20);
     double worst = 0, turned = 0;
     for (const auto& r : rows) {

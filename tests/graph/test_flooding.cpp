@@ -1,21 +1,21 @@
-// Flooding coupled to Bullet (issue 6): a holed hull sinks iff its dry mass exceeds ρ_w V_material
-// (DESIGN-NOTES 5), floats awash otherwise; a body full of water tumbles without NaN; the paper's
+// Flooding coupled to Bullet: a holed hull sinks iff its dry mass exceeds ρ_w V_material
+// (design.md 5), floats awash otherwise; a body full of water tumbles without NaN; the paper's
 // Figs. 12–13 (bow vs stern first) and a sealed compartment, from the shipped scene files.
 #include <unistd.h>
 #include <catch2/catch.hpp>
 
-#include "bullet/btBulletConvert.h"
-#include "bullet/btBuoyancyAction.h"
-#include "bullet/btBuoyancyWorld.h"
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "cli/CliErrors.h"
+#include <BulletBuoyancy/bullet/btBulletConvert.h>
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include "scene/SceneErrors.h"
 #include "cli/RunCommand.h"
-#include "cli/SceneFile.h"
-#include "graph/AutoWaterGraph.h"
-#include "graph/WaterIngress.h"
-#include "graph/btFloodingAction.h"
-#include "mesh/PrimitiveMeshes.h"
-#include "water/btWaterSurface.h"
+#include "scene/SceneFile.h"
+#include <BulletBuoyancy/graph/AutoWaterGraph.h>
+#include <BulletBuoyancy/graph/WaterIngress.h>
+#include <BulletBuoyancy/bullet/btFloodingAction.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <btBulletDynamicsCommon.h>
 

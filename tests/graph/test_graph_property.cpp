@@ -1,13 +1,13 @@
-// Property test (issue 6, for the reliability soak of issue 10): random valid water graphs with random
+// Property test (for the reliability soak): random valid water graphs with random
 // ingress, random poses and random outside water never make a node negative or over its capacity, and
 // conserve water (Σ nodes − initial = entered − drained). The invariants are the issue's own words; the
 // graphs come from a seeded generator written here, so a failure names its case and replays.
 #include <catch2/catch.hpp>
 
-#include "graph/WaterGraph.h"
-#include "graph/WaterGraphState.h"
-#include "graph/WaterIngress.h"
-#include "graph/WaterMassProperties.h"
+#include <BulletBuoyancy/graph/WaterGraph.h>
+#include <BulletBuoyancy/graph/WaterGraphState.h>
+#include <BulletBuoyancy/graph/WaterIngress.h>
+#include <BulletBuoyancy/graph/WaterMassProperties.h>
 
 #include <Eigen/Geometry>
 

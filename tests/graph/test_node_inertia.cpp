@@ -1,13 +1,13 @@
-// A node's water has its own inertia (issue 6 follow-up; paper eq. 17 only has point masses): the rigid
+// A node's water has its own inertia (follow-up; paper eq. 17 only has point masses): the rigid
 // inertia of its free-surface shape about its centroid. Oracles: textbook formulas (half-filled box, a
 // hemisphere's 83/320 m R², a full sphere's 2/5 m R²), a triangular prism from the triangle second-moment
 // formula, and a general spherical cap by numerical quadrature over slices written here.
 #include <catch2/catch.hpp>
 
-#include "graph/NodeLevel.h"
-#include "graph/WaterGraph.h"
-#include "graph/WaterGraphState.h"
-#include "graph/WaterMassProperties.h"
+#include <BulletBuoyancy/graph/NodeLevel.h>
+#include <BulletBuoyancy/graph/WaterGraph.h>
+#include <BulletBuoyancy/graph/WaterGraphState.h>
+#include <BulletBuoyancy/graph/WaterMassProperties.h>
 
 #include <Eigen/Geometry>
 

@@ -1,20 +1,20 @@
-// Permeability textures (issue 6): the red channel / 255 of an image in the model's UVs (or the generated
+// Permeability textures: the red channel / 255 of an image in the model's UVs (or the generated
 // atlas) is each surface sample's open-area fraction; bad images fail with the key and file named; the
 // per-sample map can be changed at run time all-or-nothing. Oracles: the primitive box's documented UV
 // layout (a 3 × 2 grid of face charts) gives each face's open area exactly; images are written here.
 #include <catch2/catch.hpp>
 
-#include "bullet/btBuoyancyAction.h"
-#include "bullet/btBuoyancyWorld.h"
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "cli/CliErrors.h"
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include "scene/SceneErrors.h"
 #include "cli/RunCommand.h"
-#include "cli/SceneFile.h"
-#include "graph/PermeabilityMap.h"
-#include "graph/PermeabilityTexture.h"
-#include "graph/btFloodingAction.h"
-#include "mesh/PrimitiveMeshes.h"
-#include "water/btWaterSurface.h"
+#include "scene/SceneFile.h"
+#include <BulletBuoyancy/graph/PermeabilityMap.h>
+#include <BulletBuoyancy/graph/PermeabilityTexture.h>
+#include <BulletBuoyancy/bullet/btFloodingAction.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -322,7 +322,7 @@ TEST_CASE("permeability map: paint at run time, bad edits change nothing, a hit 
     flood.setPermeability(map);
     CHECK(flood.getPermeableSamples().size() == hit);
     run(20);
-    // 300 kg > ρ_w V_material = 1000 (1 − 0.8) = 200 kg: it floods (DESIGN-NOTES 5).
+    // 300 kg > ρ_w V_material = 1000 (1 − 0.8) = 200 kg: it floods (design.md 5).
     CHECK(flood.getWaterVolume() > 0.1);
     world.removeAction(&flood);
     world.removeAction(&action);
@@ -367,7 +367,7 @@ TEST_CASE("scene key permeability.texture: the painted bottom floods, errors nam
     fs::remove_all(dir);
 }
 
-// Regression (issue 10, found by fuzz_permeability_image): a PNG whose first IDAT chunk is empty made stb_image 2.27
+// Regression (found by fuzz_permeability_image): a PNG whose first IDAT chunk is empty made stb_image 2.27
 // copy 0 bytes from a null buffer (undefined behaviour; UBSan stopped the fuzzer). The decoder drops empty IDAT
 // chunks first: they hold no image data, so the image is the same with or without them.
 TEST_CASE("permeability image: empty IDAT chunks change nothing (fuzz regression)", "[graph][fuzz-regression]") {

@@ -1,4 +1,4 @@
-// The paper's automatic water graph from CGAL's SDF segmentation (issue 6, optional). The graph tests compile
+// The paper's automatic water graph from CGAL's SDF segmentation (optional). The graph tests compile
 // only when the library was built with -DBULLET_BUOYANCY_CGAL=ON (which defines BULLET_BUOYANCY_HAS_CGAL); the
 // default build only checks the scene key's errors ("method": "sdf" without CGAL is a clear error).
 // Oracles: a dumbbell built here (two spheres of radius 0.5 joined by a thin neck of radius 0.125, as a
@@ -8,8 +8,8 @@
 // everything into one segment for any λ ≥ 0.02 — measured — so the test shape is smooth like the paper's.)
 #include <catch2/catch.hpp>
 
-#include "cli/CliErrors.h"
-#include "cli/SceneFile.h"
+#include "scene/SceneErrors.h"
+#include "scene/SceneFile.h"
 
 #include <string>
 
@@ -43,8 +43,8 @@ TEST_CASE("scene key water_graph.auto.method sdf: a clear error without CGAL", "
 
 #ifdef BULLET_BUOYANCY_HAS_CGAL
 
-#include "cli/SceneGraph.h"
-#include "graph/cgal/SdfWaterGraph.h"
+#include "scene/SceneGraph.h"
+#include <BulletBuoyancy/graph/cgal/SdfWaterGraph.h>
 
 #include <cmath>
 #include <queue>

@@ -1,14 +1,14 @@
-// Water graph core (issue 6): validation, level models, Algorithm 1 (paper Fig. 7), conservation,
+// Water graph core: validation, level models, Algorithm 1 (paper Fig. 7), conservation,
 // communicating vessels, orifice filling vs Torricelli, mass properties and their composition.
 // Every expected value comes from an analytic formula or a computation written here.
 #include <catch2/catch.hpp>
 
-#include "graph/DischargeSearch.h"
-#include "graph/NodeLevel.h"
-#include "graph/WaterGraph.h"
-#include "graph/WaterGraphState.h"
-#include "graph/WaterIngress.h"
-#include "graph/WaterMassProperties.h"
+#include <BulletBuoyancy/graph/DischargeSearch.h>
+#include <BulletBuoyancy/graph/NodeLevel.h>
+#include <BulletBuoyancy/graph/WaterGraph.h>
+#include <BulletBuoyancy/graph/WaterGraphState.h>
+#include <BulletBuoyancy/graph/WaterIngress.h>
+#include <BulletBuoyancy/graph/WaterMassProperties.h>
 
 #include <Eigen/Geometry>
 
@@ -128,7 +128,7 @@ TEST_CASE("box level model: exact volume and centroid below a plane", "[graph]")
     CHECK(nodeVolumeBelow(n, t, nodeHalfHeight(n, t)) == Approx(6.0));
 }
 
-TEST_CASE("Algorithm 1, paper Fig. 7: A sends past full B to C; no flow over an energy barrier", "[graph]") {
+TEST_CASE("Algorithm 1, paper Fig. 7: A sends past full B to C, no flow over an energy barrier", "[graph]") {
     // Three nodes of equal capacity on a chain A — B — C.
     WaterGraph g;
     g.nodes = {sphereNode("A", {0, 2, 0}, 0.1, 0.03), sphereNode("B", {0, 1, 0}, 0.1, 0.1),

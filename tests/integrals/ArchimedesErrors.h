@@ -1,10 +1,10 @@
 #pragma once
 /// @file ArchimedesErrors.h
 /// Errors of a flat-water hydrostatic result against the exact polyhedral oracle and Archimedes' principle
-/// (DESIGN-NOTES 5): ρ g V_sub upward through the oracle's centre of buoyancy. Shared by the exact-mesh tests
+/// (design.md 5): ρ g V_sub upward through the oracle's centre of buoyancy. Shared by the exact-mesh tests
 /// (clip every triangle: HydrostaticsTest.cpp; moment tree: TreeHydrostaticsTest.cpp).
 
-#include "integrals/Hydrostatics.h"
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
 #include "oracles/PolyhedralOracle.h"
 
 #include <Eigen/Geometry>

@@ -1,11 +1,11 @@
 // Accuracy of the sampled methods on baked surface samples (bakeSurfaceSamples over the primitives' UV
-// atlases) against the independent polyhedral oracle of the same mesh (DESIGN-NOTES 2.4, 5).
-#include "bake/BakeSamples.h"
-#include "integrals/Hydrostatics.h"
-#include "integrals/MassProperties.h"
-#include "mesh/PrimitiveMeshes.h"
+// atlases) against the independent polyhedral oracle of the same mesh (design.md 2.4, 5).
+#include <BulletBuoyancy/bake/BakeSamples.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/integrals/MassProperties.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include "oracles/PolyhedralOracle.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,10 +1,10 @@
-// The vector drag sum (plugin/integrals/DragKernel) against the scalar formulas it batches (SampleFormulas.h:
+// The vector drag sum (plugin/BulletBuoyancy/integrals/DragKernel) against the scalar formulas it batches (SampleFormulas.h:
 // bb_drag_wet_ramp + bb_drag_cluster_accumulate, cluster by cluster), at every SIMD width this CPU runs, with the
 // cases the masks must get right: dry, partly wet, NaN water height, no vertical extent, zero area, no spread, every
 // coefficient on or off, counts that leave a tail. And one physical check: a sphere's pressure drag is ½ρC_d πR²v².
-#include "integrals/DragClusters.h"
-#include "integrals/DragKernel.h"
-#include "integrals/SampleFormulas.h"
+#include <BulletBuoyancy/integrals/DragClusters.h>
+#include <BulletBuoyancy/integrals/DragKernel.h>
+#include <BulletBuoyancy/geometry/SampleFormulas.h>
 #include "oracles/FloatingPointTraps.h"
 
 #include <Eigen/Geometry>
@@ -159,7 +159,7 @@ TEST_CASE("drag kernel: every width the CPU runs matches the scalar formulas", "
 
 TEST_CASE("drag kernel: a fully wet sphere of flat samples gets ½ ρ C_d π R² v²", "[integrals][drag]") {
     // Fine samples of a sphere (one per latitude-longitude cell, exact spherical-zone areas) as clusters without
-    // spread: the front-facing projected areas sum to the silhouette πR² (DESIGN-NOTES 2.6's oracle).
+    // spread: the front-facing projected areas sum to the silhouette πR² (design.md 2.6's oracle).
     const double R = 0.5, v = 1.3, rho = 1000, Cd = 0.8;
     const int nu = 96, nv = 48;
     Clusters c;

@@ -1,9 +1,9 @@
-// Hydrostatics (DESIGN-NOTES 2.2, 2.3): exact clipping and sample sums against the independent oracle,
-// Archimedes' principle and closed-form values (DESIGN-NOTES 5).
-#include "integrals/Hydrostatics.h"
+// Hydrostatics (design.md 2.2, 2.3): exact clipping and sample sums against the independent oracle,
+// Archimedes' principle and closed-form values (design.md 5).
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
 #include "oracles/OracleMeshes.h"
 #include "oracles/PolyhedralOracle.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/water/btWaterSurface.h>
 #include "ArchimedesErrors.h"
 #include "TestSamples.h"
 
@@ -178,7 +178,7 @@ TEST_CASE("heeled box: righting torque when stable, capsizing when not", "[integ
     }
 }
 
-TEST_CASE("fully submerged closed mesh: no net horizontal force; dry: zero", "[integrals][hydro]") {
+TEST_CASE("fully submerged closed mesh: no net horizontal force, dry: zero", "[integrals][hydro]") {
     const Eigen::Isometry3d pose =
         Eigen::Translation3d(0.2, -3.0, 0.1) * Eigen::AngleAxisd(0.8, Eigen::Vector3d(1, 2, -1).normalized());
     for (const auto& shape : testShapes()) {
@@ -226,7 +226,7 @@ TEST_CASE("sampled hydrostatics: identities and convergence to the oracle", "[in
                     CountingFlat water(h);
                     const HydrostaticsResult r = sampledHydrostatics(s, pose, water, 0, kRho, kG, pose.translation(), ws);
                     CHECK(water.calls == 1);  // one batch query per evaluation
-                    // Vertical pressure force = ρ g V_sub for any samples (same sum, DESIGN-NOTES 2.3).
+                    // Vertical pressure force = ρ g V_sub for any samples (same sum, design.md 2.3).
                     CHECK(r.force.y() == Approx(kRho * kG * r.submerged_volume).epsilon(1e-12));
                     const OracleMoments o = oracleSubmergedMoments(posed, shape.mesh.tris, h);
                     worstV = std::max(worstV, std::abs(r.submerged_volume - o.volume) / Vfull);
@@ -237,7 +237,7 @@ TEST_CASE("sampled hydrostatics: identities and convergence to the oracle", "[in
             INFO(shape.name << " k=" << k << " V err " << worstV << " C_B err " << worstC);
             WARN("sampled (k=" << k << " sub-triangles per edge) " << shape.name << ": V err/Vfull " << worstV
                                 << ", C_B err/diag " << worstC);
-            // Waterline error O(h²) in the sample size h (not monotone at every step, DESIGN-NOTES 2.4):
+            // Waterline error O(h²) in the sample size h (not monotone at every step, design.md 2.4):
             // from k = 2 to k = 8 it must drop by well over 4 (ideal 16).
             if (k == 2) {
                 prevV = worstV;

@@ -1,13 +1,13 @@
 #pragma once
 /// @file HydrostaticsTestCases.h
 /// Cases shared by the exact-mesh oracle tests (the moment tree: TreeHydrostaticsTest.cpp; the per-vertex shares:
-/// VertexHydrostaticsTest.cpp): named oracle meshes, random poses, the benchmark's P3 sea, and a pose that puts a body
+/// VertexHydrostaticsTest.cpp): named oracle meshes, random poses, the benchmark's scaling sea, and a pose that puts a body
 /// across the local waterline of a wave field.
 
-#include "mesh/TriangleMesh.h"
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
 #include "oracles/OracleMeshes.h"
-#include "water/btGerstnerWaterSurface.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -32,7 +32,7 @@ inline Eigen::Isometry3d randomPose(std::mt19937& rng, double spread) {
            Eigen::AngleAxisd(M_PI * u(rng), axis.normalized());
 }
 
-/// The sea of the benchmark's P3 (bullet_examples/benchmark/Scaling.h): amplitudes 1, 0.6, 0.35, 0.2 m, wavelengths
+/// The benchmark's scaling sea (bullet_examples/benchmark/Scaling.h): amplitudes 1, 0.6, 0.35, 0.2 m, wavelengths
 /// 60, 35, 20, 10 m.
 inline std::vector<btGerstnerWave> p3SeaWaves() {
     return {{1.0, 60.0, 1.0, 0.0, 0.5, 0.0},

@@ -1,10 +1,10 @@
-// Level of detail (DESIGN-NOTES 2.5): drag clusters and the per-body water patch, against independent
+// Level of detail (design.md 2.5): drag clusters and the per-body water patch, against independent
 // references (sums over the fine samples computed here, the sphere's silhouette area, polynomials and sines).
-#include "integrals/DragClusters.h"
-#include "integrals/Hydrostatics.h"
-#include "integrals/WaterPatch.h"
+#include <BulletBuoyancy/integrals/DragClusters.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/integrals/WaterPatch.h>
 #include "oracles/OracleMeshes.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/water/btWaterSurface.h>
 #include "TestSamples.h"
 
 #include <catch2/catch.hpp>
@@ -123,7 +123,7 @@ TEST_CASE("WaterPatch: Taylor data exact on quadratic water, derivatives match t
 }
 
 TEST_CASE("WaterPatch: error on a sine wave shrinks at least like h^2.5 (bicubic)", "[integrals][lod]") {
-    // Wavelength 10 m, amplitude 0.2 m (P3's shortest wave) over a 4 m footprint.
+    // Wavelength 10 m, amplitude 0.2 m (the scaling sea's shortest wave) over a 4 m footprint.
     const SineWater water(0.2, 10.0);
     const double e8 = worstPatchError(water, 8), e12 = worstPatchError(water, 12), e20 = worstPatchError(water, 20);
     INFO("worst |error| m: 8 nodes " << e8 << ", 12 nodes " << e12 << ", 20 nodes " << e20);
@@ -132,7 +132,7 @@ TEST_CASE("WaterPatch: error on a sine wave shrinks at least like h^2.5 (bicubic
     CHECK(e20 < e12 / std::pow(2.0, 2.5)); // h halves again
 }
 
-TEST_CASE("Drag clusters conserve area vectors, areas and first moments; 0 means no merging", "[integrals][lod]") {
+TEST_CASE("Drag clusters conserve area vectors, areas and first moments, 0 means no merging", "[integrals][lod]") {
     const SurfaceSamples fine = subdividedSamples(oracleTorus(0.6, 0.2, 32, 16), 3);
     double A[3] = {0, 0, 0}, area = 0, m[3] = {0, 0, 0};
     for (std::size_t i = 0; i < fine.size(); ++i) {
@@ -182,7 +182,7 @@ TEST_CASE("Drag clusters: one vertical square's half extent is half its side", "
 }
 
 TEST_CASE("Drag clusters: a sphere's front-facing projected area stays within 10 % of pi R^2", "[integrals][lod]") {
-    // DESIGN-NOTES 2.6: Σ_front A·v̂ is the silhouette area πR² for a convex body (the quadratic-drag oracle).
+    // design.md 2.6: Σ_front A·v̂ is the silhouette area πR² for a convex body (the quadratic-drag oracle).
     const double R = 0.5;
     const SurfaceSamples fine = subdividedSamples(oracleSphere(R, 64, 32), 2);
     for (std::size_t maxClusters : {std::size_t(32), std::size_t(64), std::size_t(128)}) {
@@ -215,7 +215,7 @@ TEST_CASE("clippedHydrostatics with a water patch: exact on quadratic-free (line
     CHECK((lod.centre_of_buoyancy - exact.centre_of_buoyancy).norm() < 1e-4);
 }
 
-#include "bullet/btBuoyancySettings.h"
+#include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 
 #include <stdexcept>
 #include <string>
@@ -273,11 +273,11 @@ TEST_CASE("Wave patch size: spacing at most the shortest wavelength / nodes per 
     CHECK(btBuoyancyWaterPatchNodes(s, 2.157, 10.0) == 0);
 }
 
-#include "water/btGerstnerWaterSurface.h"
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 
 TEST_CASE("Wave patch sized per wavelength: a 4 m body in 10-60 m waves within 1e-4 of V of exact queries",
           "[integrals][lod]") {
-    // Issue 9's P3 sea; a 4 x 0.8 x 1.4 m box (the demo boat's extents) heeled and trimmed at several times.
+    // The scaling sea; a 4 x 0.8 x 1.4 m box (the demo boat's extents) heeled and trimmed at several times.
     const btGerstnerWaterSurface sea({{1.0, 60.0, 1.0, 0.0, 0.5, 0.0},
                                       {0.6, 35.0, 0.8, 0.6, 0.5, 1.3},
                                       {0.35, 20.0, -0.3, 1.0, 0.5, 2.1},
@@ -304,7 +304,7 @@ TEST_CASE("Wave patch sized per wavelength: a 4 m body in 10-60 m waves within 1
                 worst[k] = std::max(worst[k], std::abs(lod.submerged_volume - exact.submerged_volume) / V);
             }
         }
-    std::printf("4 m box in the P3 sea, worst volume error of V against exact queries: 8x8 patch %.2e, %dx%d %.2e\n",
+    std::printf("4 m box in the scaling sea, worst volume error of V against exact queries: 8x8 patch %.2e, %dx%d %.2e\n",
                 worst[0], adaptive, adaptive, worst[1]);
     CHECK(worst[1] < 1e-4);
     CHECK(worst[1] < worst[0]);

@@ -1,6 +1,6 @@
 // Mass properties: exact polyhedral integrals and sample sums against the independent oracle and
-// closed-form values (DESIGN-NOTES 2.1, 5).
-#include "integrals/MassProperties.h"
+// closed-form values (design.md 2.1, 5).
+#include <BulletBuoyancy/integrals/MassProperties.h>
 #include "oracles/OracleMeshes.h"
 #include "oracles/PolyhedralOracle.h"
 #include "TestSamples.h"
@@ -93,7 +93,7 @@ TEST_CASE("polyhedronMassProperties rejects bad input", "[integrals][mass]") {
 }
 
 TEST_CASE("solidMassProperties: one sample per box triangle is exact", "[integrals][mass]") {
-    // On axis-aligned faces every field of DESIGN-NOTES 2.1 is at most linear over the face, so a sample at
+    // On axis-aligned faces every field of design.md 2.1 is at most linear over the face, so a sample at
     // each triangle's centroid integrates it exactly.
     const OracleMesh box = posedShape(oracleBox(2, 3, 5), Eigen::Isometry3d(Eigen::Translation3d(0.5, -1, 2)));
     const SurfaceSamples s = subdividedSamples(box, 1);

@@ -1,4 +1,4 @@
-// Tests of the independent oracle itself against closed-form values (DESIGN-NOTES 5).
+// Tests of the independent oracle itself against closed-form values (design.md 5).
 #include "oracles/OracleMeshes.h"
 #include "oracles/PolyhedralOracle.h"
 

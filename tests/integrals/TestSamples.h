@@ -2,10 +2,10 @@
 /// @file TestSamples.h
 /// Surface samples built inside the tests, independent of the baker: each triangle is split into k²
 /// congruent sub-triangles (barycentric grid) and each sub-triangle gives one sample at its centroid with
-/// A = area × outward normal. This is a valid "texture" for the divergence identities (DESIGN-NOTES 2):
+/// A = area × outward normal. This is a valid "texture" for the divergence identities (design.md 2):
 /// integrands linear over a piece (the volume) are exact.
 
-#include "bake/SurfaceSamples.h"
+#include <BulletBuoyancy/bake/SurfaceSamples.h>
 #include "oracles/OracleMeshes.h"
 
 #include <Eigen/Geometry>

@@ -1,15 +1,15 @@
-// The exact-mesh moment tree (DESIGN-NOTES 2.5, plugin/integrals/MeshMomentTree + TreeHydrostatics): the node
+// The exact-mesh moment tree (design.md 2.5, plugin/BulletBuoyancy/integrals/MeshMomentTree + TreeHydrostatics): the node
 // moments against the divergence theorem and the independent polyhedral oracle, the tree result in flat water
 // against the oracle and Archimedes, and on waves against clipping every triangle with exact wave queries.
 #include "ArchimedesErrors.h"
 #include "HydrostaticsTestCases.h"
-#include "integrals/Hydrostatics.h"
-#include "integrals/MeshMomentTree.h"
-#include "integrals/WaterPatch.h"
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/integrals/MeshMomentTree.h>
+#include <BulletBuoyancy/integrals/WaterPatch.h>
 #include "oracles/OracleMeshes.h"
 #include "oracles/PolyhedralOracle.h"
-#include "water/btGerstnerWaterSurface.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -153,17 +153,17 @@ TEST_CASE("tree hydrostatics in flat water: the oracle and Archimedes to roundin
 
 TEST_CASE("tree hydrostatics on Gerstner waves: close to clipping every triangle with exact wave queries",
           "[integrals][tree]") {
-    // The P3 sea of the benchmark (amplitudes 0.2–1 m, wavelengths 10–60 m) and a steeper short sea.
+    // The scaling sea of the benchmark (amplitudes 0.2–1 m, wavelengths 10–60 m) and a steeper short sea.
     const std::vector<btGerstnerWave> p3 = p3SeaWaves();
     const std::vector<btGerstnerWave> shortSea = {{0.25, 8.0, 1.0, 0.2, 0.7, 0.0}, {0.15, 5.0, 0.3, 1.0, 0.6, 1.0}};
-    // The P3 sea's wavelengths at 0.3 of its amplitudes: low curvature, but the third-order part of the water over a
+    // The scaling sea's wavelengths at 0.3 of its amplitudes: low curvature, but the third-order part of the water over a
     // node does not shrink as fast (regression: a node-size rule on the curvature alone let nodes grow like
     // 1/amplitude here and the tree added 0.2 % of V on a 3,400-triangle boat).
     std::vector<btGerstnerWave> gentle = p3;
     for (auto& w : gentle) w.amplitude *= 0.3;
     std::mt19937 rng(11);
     double worstV = 0, worstC = 0, worstF = 0, worstT = 0;
-    double patchV[3] = {0, 0, 0}, treeV[3] = {0, 0, 0};  // P3, gentle, short sea: clipping with the patch's heights, tree
+    double patchV[3] = {0, 0, 0}, treeV[3] = {0, 0, 0};  // scaling, gentle, short sea: clipping with the patch's heights, tree
     const std::vector<btGerstnerWave>* seas[3] = {&p3, &gentle, &shortSea};
     for (int seaIndex = 0; seaIndex < 3; ++seaIndex) {
         const std::vector<btGerstnerWave>* waves = seas[seaIndex];
@@ -200,7 +200,7 @@ TEST_CASE("tree hydrostatics on Gerstner waves: close to clipping every triangle
                 patchV[seaIndex] = std::max(patchV[seaIndex], std::abs(pc.submerged_volume - ex.submerged_volume) / Vfull);
                 treeV[seaIndex] = std::max(treeV[seaIndex], std::abs(tr.submerged_volume - pc.submerged_volume) / Vfull);
                 // Against exact queries: the patch's own interpolation error plus the tree's (both level-of-detail
-                // approximations, DESIGN-NOTES 2.5), well inside the sampled methods' 0.1 % of V / 0.5 % of the diagonal.
+                // approximations, design.md 2.5), well inside the sampled methods' 0.1 % of V / 0.5 % of the diagonal.
                 CHECK(eV < 6e-4);
                 CHECK(eC < 1e-3);
                 CHECK(eF < 1e-3);
@@ -215,7 +215,7 @@ TEST_CASE("tree hydrostatics on Gerstner waves: close to clipping every triangle
     std::printf("tree on waves vs clipping with exact queries, worst: volume %.2e of V, CoB %.2e of diag, force %.2e, "
                 "torque %.2e\n",
                 worstV, worstC, worstF, worstT);
-    std::printf("  volume error of V, patch heights vs exact queries / tree vs the same patch: P3 sea %.2e / %.2e; at 0.3 of "
+    std::printf("  volume error of V, patch heights vs exact queries / tree vs the same patch: scaling sea %.2e / %.2e; at 0.3 of "
                 "its amplitudes %.2e / %.2e; short steep sea %.2e / %.2e\n",
                 patchV[0], treeV[0], patchV[1], treeV[1], patchV[2], treeV[2]);
 }

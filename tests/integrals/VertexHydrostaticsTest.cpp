@@ -1,16 +1,16 @@
-// Exact-mesh hydrostatics through the per-vertex shares (plugin/integrals/VertexShares + VertexHydrostatics): the
+// Exact-mesh hydrostatics through the per-vertex shares (plugin/BulletBuoyancy/integrals/VertexShares + VertexHydrostatics): the
 // shares against their definition, flat water against the independent polyhedral oracle and Archimedes (water levels
 // through vertices included: the corners with D = 0 exactly), and waves against clipping every triangle with the same
 // corner heights (the same water model, written independently in ClippedHydrostatics.cpp).
 #include "ArchimedesErrors.h"
 #include "HydrostaticsTestCases.h"
-#include "integrals/Hydrostatics.h"
-#include "integrals/VertexShares.h"
-#include "integrals/WaterPatch.h"
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/integrals/VertexShares.h>
+#include <BulletBuoyancy/integrals/WaterPatch.h>
 #include "oracles/OracleMeshes.h"
 #include "oracles/PolyhedralOracle.h"
-#include "water/btGerstnerWaterSurface.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,16 +1,16 @@
-// The passes of the per-vertex hydrostatics (plugin/integrals/VertexPassKernels): every SIMD width this CPU runs
+// The passes of the per-vertex hydrostatics (plugin/BulletBuoyancy/integrals/VertexPassKernels): every SIMD width this CPU runs
 // against plain loops written here, and pass 4 against clipping each listed triangle as a polygon (BodyFrameSums.h's
 // addClippedBodyTriangle) less the corner shares of VertexShares.h. Pass 2 with D values that are negative, zero,
 // positive, +∞ (not computed) and NaN, and vertex counts that leave a tail. Pass 1: each vertex moved by the pose and its height asked of WaterPatch::height one
 // by one (vertices outside the patch's footprint included: clamped cells). Pass 3: the triangle classes from depths
 // that are negative, zero (two and three corners on the water), positive and +∞, triangle counts that leave a tail.
-#include "integrals/BodyFrameSums.h"
-#include "integrals/VertexPassKernels.h"
-#include "integrals/VertexShares.h"
-#include "integrals/WaterPatch.h"
+#include <BulletBuoyancy/integrals/BodyFrameSums.h>
+#include <BulletBuoyancy/integrals/VertexPassKernels.h>
+#include <BulletBuoyancy/integrals/VertexShares.h>
+#include <BulletBuoyancy/integrals/WaterPatch.h>
 #include "oracles/FloatingPointTraps.h"
 #include "oracles/OracleMeshes.h"
-#include "water/btGerstnerWaterSurface.h"
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>

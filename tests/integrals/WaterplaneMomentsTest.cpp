@@ -4,13 +4,13 @@
 // ∫_waterplane f dA = −∫_wet f n_y dA for f = 1, x', z', x'², x'z', z'² (the fields (0, f, 0) are divergence-free),
 // the wetted pieces clipped and integrated here. All three exact-mesh paths (clip-all, moment tree, vertex shares).
 #include "HydrostaticsTestCases.h"
-#include "integrals/Hydrostatics.h"
-#include "integrals/MeshMomentTree.h"
-#include "integrals/VertexShares.h"
-#include "integrals/WaterPatch.h"
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/integrals/MeshMomentTree.h>
+#include <BulletBuoyancy/integrals/VertexShares.h>
+#include <BulletBuoyancy/integrals/WaterPatch.h>
 #include "oracles/OracleMeshes.h"
-#include "water/btGerstnerWaterSurface.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <catch2/catch.hpp>
 #include <array>

@@ -1,8 +1,8 @@
 // Import in a child process: same result as in-process, errors passed through, and a crash or a hang
 // of the importer (simulated with the test-only fault hook) becomes a clean MeshError.
 
-#include "cli/ChildProcessImport.h"
-#include "mesh/MeshImport.h"
+#include "scene/ChildProcessImport.h"
+#include <BulletBuoyancy/mesh/MeshImport.h>
 #include "mesh/MeshTestUtil.h"
 
 #include <catch2/catch.hpp>

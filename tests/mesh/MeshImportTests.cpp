@@ -2,8 +2,8 @@
 // node transforms, UVs, and the import errors. Expected values: bounding-box volumes of box-shaped
 // models, and transforms/counts written by hand in tests/data/meshes/generate.py.
 
-#include "mesh/MeshImport.h"
-#include "mesh/MeshRepair.h"
+#include <BulletBuoyancy/mesh/MeshImport.h>
+#include <BulletBuoyancy/mesh/MeshRepair.h>
 #include "mesh/MeshTestUtil.h"
 
 #include <catch2/catch.hpp>

@@ -1,8 +1,8 @@
-// prepareMesh: the catalogue of broken meshes (issue 3), each with its exact error, and what it repairs.
+// prepareMesh: the catalogue of broken meshes, each with its exact error, and what it repairs.
 // Expected counts are the ones built by hand in tests/data/meshes/generate.py or below.
 
-#include "mesh/MeshImport.h"
-#include "mesh/MeshRepair.h"
+#include <BulletBuoyancy/mesh/MeshImport.h>
+#include <BulletBuoyancy/mesh/MeshRepair.h>
 #include "mesh/MeshTestUtil.h"
 
 #include <catch2/catch.hpp>
@@ -83,7 +83,7 @@ TEST_CASE("repair: a cavity (inward box inside an outward box) is kept", "[mesh]
     CHECK(tetraVolume(m) == Approx(4.0 * 4 * 4 - 2.0 * 2 * 2));
 }
 
-TEST_CASE("repair: an inverted box inside nothing next to a good one is flipped; intersecting parts warned",
+TEST_CASE("repair: an inverted box inside nothing next to a good one is flipped, intersecting parts warned",
           "[mesh][repair]") {
     TriangleMesh m;
     const MeshReport r = prepareFile("intersecting_boxes.obj", &m);

@@ -3,7 +3,7 @@
 /// Small independent helpers for the mesh tests (no library code): signed volume by a tetrahedra sum,
 /// bounding boxes, and paths to test data.
 
-#include "mesh/TriangleMesh.h"
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
 
 #include <Eigen/Geometry>
 #include <string>

@@ -2,9 +2,9 @@
 // polyhedral formulas derived by hand, and UVs forming a valid layout (inside [0,1]², counter-clockwise,
 // no two triangles covering the same UV point — checked by point sampling).
 
-#include "mesh/MeshRepair.h"
+#include <BulletBuoyancy/mesh/MeshRepair.h>
 #include "mesh/MeshTestUtil.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 
 #include <catch2/catch.hpp>
 

@@ -3,9 +3,9 @@
 /// Shared helpers of tests/opencl: a backend for a world (or a clean skip when there is no device), and the
 /// per-substep CPU-vs-device comparison of one world's actions at identical states.
 
-#include "bullet/btBuoyancyAction.h"
-#include "bullet/btBuoyancyWorld.h"
-#include "opencl/btOpenClBuoyancyBackend.h"
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btOpenClBuoyancyBackend.h>
 
 #include <btBulletDynamicsCommon.h>
 

@@ -1,11 +1,11 @@
-// The accuracy oracle through the OpenCL path (issue 7: "the core's accuracy tests pass through the OpenCL
+// The accuracy oracle through the OpenCL path ("the core's accuracy tests pass through the OpenCL
 // path in double"): submerged volume and centre of buoyancy of posed meshes from the device's batch, against
 // the exact polyhedral oracle of tests/oracles (an independent implementation), at the exact-coverage
-// accuracy the core documents (DESIGN-NOTES 2.4, docs/accuracy.md: 128² within 0.03 % of the volume).
+// accuracy the core documents (design.md 2.4, docs/accuracy.md: 128² within 0.03 % of the volume).
 #include "OpenClTestSupport.h"
 
-#include "bullet/btBulletConvert.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/bullet/btBulletConvert.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include "oracles/BulletTestWorld.h"
 #include "oracles/PolyhedralOracle.h"
 
@@ -61,7 +61,7 @@ TEST_CASE("OpenCL double: submerged volume and centre of buoyancy match the exac
                 REQUIRE(sub.volume > 0.05 * dry.volume);
                 worstV = std::max(worstV, std::abs(h.submerged_volume - sub.volume) / dry.volume);
                 worstC = std::max(worstC, (h.centre_of_buoyancy - sub.centroid).norm() / diagonal);
-                // Flat water: the vertical force is ρ g V_sub for any samples (DESIGN-NOTES 2.3).
+                // Flat water: the vertical force is ρ g V_sub for any samples (design.md 2.3).
                 CHECK(h.force.y() == Approx(1000 * 9.81 * h.submerged_volume).epsilon(1e-9));
                 ++evaluated;
             }

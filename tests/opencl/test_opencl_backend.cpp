@@ -1,16 +1,16 @@
-// OpenCL backend (issue 7) against the CPU path: the same bodies at identical states give the same per-substep
+// OpenCL backend against the CPU path: the same bodies at identical states give the same per-substep
 // forces (1e-9 of the weight scale in double, 1e-4 in float), in one batched launch for all bodies, on flat
 // water with a current, Gerstner waves, a height grid and a sampled FFT ocean; the selection falls back to the
 // CPU with a message, never a crash. Every test skips with a WARN when no OpenCL device exists.
 #include "OpenClTestSupport.h"
 
-#include "bullet/btBulletConvert.h"
-#include "integrals/Hydrostatics.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/bullet/btBulletConvert.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include "oracles/BulletTestWorld.h"
-#include "water/btFftOceanSurface.h"
-#include "water/btGerstnerWaterSurface.h"
-#include "water/btGridWaterSurface.h"
+#include <BulletBuoyancy/water/btFftOceanSurface.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btGridWaterSurface.h>
 
 #include <catch2/catch.hpp>
 

@@ -1,15 +1,15 @@
-// Deformable bodies (paper Fig. 17, issue 7): re-baking through the fixed texel → (triangle, barycentric) map
+// Deformable bodies (paper Fig. 17): re-baking through the fixed texel → (triangle, barycentric) map
 // gives what a fresh bake of the deformed mesh through the same UVs gives (CPU and device), its volume is the
 // deformed mesh's exact polyhedral volume (oracle), and a body whose samples follow the vertices gets the
 // buoyancy of the deformed shape on the CPU and on the device alike.
 #include "OpenClTestSupport.h"
 
-#include "atlas/UvLayout.h"
-#include "bake/BakeSamples.h"
-#include "bake/DeformableRebake.h"
-#include "bake/btBuoyancyDeformable.h"
-#include "bullet/btBulletConvert.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/atlas/UvLayout.h>
+#include <BulletBuoyancy/bake/BakeSamples.h>
+#include <BulletBuoyancy/bake/DeformableRebake.h>
+#include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
+#include <BulletBuoyancy/bullet/btBulletConvert.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include "oracles/BulletTestWorld.h"
 #include "oracles/PolyhedralOracle.h"
 
@@ -74,7 +74,7 @@ TEST_CASE("deformable: re-bake through the fixed map equals a fresh bake of the 
     }
 }
 
-TEST_CASE("deformable: btBuoyancyDeformable follows the vertices; its volume is the deformed mesh's", "[opencl][bake]") {
+TEST_CASE("deformable: btBuoyancyDeformable follows the vertices, its volume is the deformed mesh's", "[opencl][bake]") {
     btBuoyancySettings s;
     s.method = btBuoyancyMethod::ExactCoverage;
     s.textureSize = 128;
@@ -83,7 +83,7 @@ TEST_CASE("deformable: btBuoyancyDeformable follows the vertices; its volume is 
     REQUIRE(skin->getSamples().size() == shape->getSamples().size());
     const buoyancy::TriangleMesh& mesh = shape->getMesh();
     // At rest the samples are the shape's (the same bake); volumes are within the exact-coverage accuracy of the
-    // exact polyhedral volume (a texel mixing pieces of non-coplanar triangles is not exact: DESIGN-NOTES 2.1).
+    // exact polyhedral volume (a texel mixing pieces of non-coplanar triangles is not exact: design.md 2.1).
     CHECK(skin->getVolume() == Approx(shape->getVolume()).epsilon(1e-12));
     CHECK(skin->getVolume() == Approx(oracleDryMoments(mesh.vertices, mesh.triangles).volume).epsilon(3e-4));
     const std::uint64_t v0 = skin->getVersion();
@@ -117,7 +117,7 @@ TEST_CASE("deformable: btBuoyancyDeformable follows the vertices; its volume is 
                       Catch::Contains("exact-mesh"));
 }
 
-TEST_CASE("deformable: device re-bake matches the CPU re-bake; a deformed body floats the same on CPU and device",
+TEST_CASE("deformable: device re-bake matches the CPU re-bake, a deformed body floats the same on CPU and device",
           "[opencl][bake]") {
     btBuoyancySettings s;
     s.method = btBuoyancyMethod::ExactCoverage;

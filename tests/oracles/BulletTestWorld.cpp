@@ -1,6 +1,6 @@
 #include "oracles/BulletTestWorld.h"
 
-#include "bullet/btBuoyancyInvariants.h"
+#include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>
 #include "oracles/PolyhedralOracle.h"
 
 #include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
@@ -23,7 +23,7 @@ BulletTestWorld::BulletTestWorld(const btWaterSurface* surface, double g) {
 void BulletTestWorld::init(double g) {
     // Several contact points per convex-vs-plane pair (Bullet perturbs the contact normal, 3 × 3 iterations):
     // with the default single point a box or hull resting on the seabed gets one new point per substep, rocks
-    // on it and at 30 Hz sank 0.2 m into the ground and kept spinning (property test, issue 10).
+    // on it and at 30 Hz sank 0.2 m into the ground and kept spinning (property test).
     m_config.setPlaneConvexMultipointIterations();
     m_world = std::make_unique<btDiscreteDynamicsWorld>(&m_dispatcher, &m_broadphase, &m_solver, &m_config);
     m_world->setGravity(btVector3(0, btScalar(-g), 0));

@@ -3,13 +3,13 @@
 /// The one Bullet fixture of the physics tests (tests/bullet, tests/reliability; Jolt PhysicsTestContext
 /// style): a Bullet world with water (flat at a level, or any btWaterSurface such as Gerstner waves), helpers
 /// to add buoyant bodies (and their water graphs), to step with Bullet's fixed substeps, to let bodies settle,
-/// and, on request, a check of every body's invariants after every substep (btBuoyancyCheckBody, issue 10).
+/// and, on request, a check of every body's invariants after every substep (btBuoyancyCheckBody).
 
-#include "bullet/btBuoyancyAction.h"
-#include "bullet/btBuoyancyWorld.h"
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "graph/btFloodingAction.h"
-#include "water/btWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/bullet/btFloodingAction.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <btBulletDynamicsCommon.h>
 

@@ -1,6 +1,6 @@
 #include "oracles/OracleMeshes.h"
 
-#include "mesh/TriangleMesh.h"
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
 
 #include <cmath>
 

@@ -1,9 +1,9 @@
 #pragma once
 /// @file PolyhedralOracle.h
-/// Independent exact reference for tests (DESIGN-NOTES 5): dry and submerged volume, centroid and second
+/// Independent exact reference for tests (design.md 5): dry and submerged volume, centroid and second
 /// moments of a closed triangle mesh, computed by signed tetrahedra and triangle clipping. Written without
 /// the library's code or approach (the library integrates Eberly's per-face polynomials and the fields of
-/// DESIGN-NOTES 2.2); takes plain vectors so it depends on nothing in plugin/.
+/// design.md 2.2); takes plain vectors so it depends on nothing in plugin/.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -41,7 +41,7 @@ double oracleSurfaceArea(const std::vector<Eigen::Vector3d>& verts, const std::v
 /// Apply a rigid pose to every vertex.
 std::vector<Eigen::Vector3d> oraclePose(const std::vector<Eigen::Vector3d>& verts, const Eigen::Isometry3d& pose);
 
-/// @name Analytic helpers (DESIGN-NOTES 5)
+/// @name Analytic helpers (design.md 5)
 ///@{
 /// Volume of a ball of radius R, m³.
 double sphereVolume(double R);

@@ -1,10 +1,10 @@
 #pragma once
 /// @file ReliabilityHelpers.h
-/// What the reliability tests (issue 10) add to the shared fixture tests/oracles/BulletTestWorld.h: a world
+/// What the reliability tests add to the shared fixture tests/oracles/BulletTestWorld.h: a world
 /// that checks every body's invariants after every substep, floating-point traps masked on purpose, and
 /// the process's resident memory.
 
-#include "bullet/btBuoyancyInvariants.h"
+#include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>
 #include "oracles/BulletTestWorld.h"
 #include "oracles/FloatingPointTraps.h"
 

@@ -1,4 +1,4 @@
-// The bad-input catalogue (issue 10, docs/bad-input.md): every way a mesh, shape, setting, body, world,
+// The bad-input catalogue (docs/bad-input.md): every way a mesh, shape, setting, body, world,
 // time step or scene can be wrong, with the exact error it gets, and the check that nothing is
 // half-applied (a rejected call leaves the object as it was). The broken mesh *files* of prepareMesh are
 // catalogued in tests/mesh/MeshRepairTests.cpp; here are the in-memory cases and everything downstream.
@@ -6,11 +6,11 @@
 
 #include "reliability/ReliabilityHelpers.h"
 
-#include "cli/CliErrors.h"
-#include "cli/SceneFile.h"
-#include "mesh/MeshImport.h"
-#include "mesh/MeshRepair.h"
-#include "mesh/PrimitiveMeshes.h"
+#include "scene/SceneErrors.h"
+#include "scene/SceneFile.h"
+#include <BulletBuoyancy/mesh/MeshImport.h>
+#include <BulletBuoyancy/mesh/MeshRepair.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 
 #include <catch2/catch.hpp>
 
@@ -142,7 +142,7 @@ TEST_CASE("bad input: in-memory meshes rejected by prepareMesh", "[reliability][
 
 TEST_CASE("bad input: a mesh given to btBuoyancyShape::create without prepareMesh", "[reliability][bad-input]") {
     ScopedFpTrapsOff infOnPurpose;  // Eigen's allFinite() computes Inf − Inf
-    // Regression (issue 10): out-of-range indices were read out of bounds by the exact-mesh face samples.
+    // Regression: out-of-range indices were read out of bounds by the exact-mesh face samples.
     for (btBuoyancyMethod method : {btBuoyancyMethod::ExactMesh, btBuoyancyMethod::ExactCoverage}) {
         btBuoyancySettings s;
         s.method = method;
@@ -290,7 +290,7 @@ TEST_CASE("bad input: body settings and poses rejected by btBuoyantBody", "[reli
     }
     CHECK_THROWS_WITH(btBuoyantBody(nullptr, btBuoyantBodySettings(), makePose(btVector3(0, 0, 0))), Equals("shape: null"));
 
-    // Regression (issue 10): a NaN or scaled pose went straight into the btRigidBody.
+    // Regression: a NaN or scaled pose went straight into the btRigidBody.
     btTransform nanPose = makePose(btVector3(0, 0, 0));
     nanPose.getOrigin().setY(btScalar(kNaN));
     CHECK_THROWS_WITH(btBuoyantBody(shape, btBuoyantBodySettings(), nanPose),
@@ -321,7 +321,7 @@ TEST_CASE("bad input: updateMassProperties leaves the body as it was", "[reliabi
         nanI(0, 1) = kInf;
         CHECK_THROWS_WITH(b.updateMassProperties(100, Eigen::Vector3d::Zero(), nanI), Equals(bad));
     }
-    // Regression (issue 10): a negative-definite inertia was clamped to a tiny positive one silently.
+    // Regression: a negative-definite inertia was clamped to a tiny positive one silently.
     CHECK_THROWS_WITH(b.updateMassProperties(100, Eigen::Vector3d::Zero(), -I),
                       Equals("inertia: not positive semi-definite (smallest principal moment -10)"));
     CHECK(same(snapshot(b), before));
@@ -372,7 +372,7 @@ TEST_CASE("bad input: zero, negative, NaN and infinite time steps apply nothing"
         a.updateAction(&c.w.world(), btScalar(dt));
         CHECK_FALSE(a.getLastResult().applied);
         CHECK(same(snapshot(c.w.body(c.i)), before));
-        // Regression (issue 10): the water clock advanced by dt first, so a NaN dt made it NaN for good.
+        // Regression: the water clock advanced by dt first, so a NaN dt made it NaN for good.
         CHECK(c.w.water().getTime() == t0);
     }
     // Bullet itself runs no substep for a zero frame time.
@@ -404,7 +404,7 @@ TEST_CASE("bad input: body removed from the world while its action remains", "[r
 TEST_CASE("bad input: NaN pose or absurd velocity never reaches the body through the action", "[reliability][bad-input]") {
     ScopedFpTrapsOff nanOnPurpose;
     SECTION("NaN in the body's transform") {
-        // Regression (issue 10): clippedHydrostatics threw invalid_argument out of updateAction, i.e. through
+        // Regression: clippedHydrostatics threw invalid_argument out of updateAction, i.e. through
         // Bullet's stepSimulation into the game.
         OneCube c;
         btRigidBody* r = c.w.rigid(c.i);
@@ -438,7 +438,7 @@ TEST_CASE("bad input: NaN pose or absurd velocity never reaches the body through
         w.world().removeRigidBody(&r);
     }
     SECTION("a velocity near the largest btScalar") {
-        // Regression (issue 10): the drag impulse was checked in double, then rounded to float: Inf.
+        // Regression: the drag impulse was checked in double, then rounded to float: Inf.
         OneCube c;
         btRigidBody* r = c.w.rigid(c.i);
         const btScalar big = std::numeric_limits<btScalar>::max() / btScalar(4);
@@ -493,7 +493,7 @@ TEST_CASE("bad input: scene files name the file and the key", "[reliability][bad
     CHECK_THROWS_WITH(scene("{" + kBox + ", \"density\": 500, \"rotation\": {\"axis\": [0, 0, 0], \"degrees\": 30}}"),
                       Equals("s.json: bodies[0].rotation.axis: zero axis"));
     // JSON has no NaN; a number too large for a double is the closest thing.
-    // Regression (issue 10, found by fuzz_scene_json): nlohmann throws out_of_range, not parse_error, for it
+    // Regression (found by fuzz_scene_json): nlohmann throws out_of_range, not parse_error, for it
     // and the CLI died in std::terminate.
     CHECK_THROWS_WITH(scene("{" + kBox + ", \"density\": 500, \"position\": [1e400, 0, 0]}"),
                       Equals("s.json: invalid JSON: [json.exception.out_of_range.406] number overflow parsing '1e400'"));

@@ -1,9 +1,9 @@
-// Regression tests for what the fuzzers (fuzz/, issue 10) found in our code. Each case is the minimised or
+// Regression tests for what the fuzzers (fuzz/) found in our code. Each case is the minimised or
 // decoded crashing input, written out by hand, with the behaviour it must have now.
 
-#include "mesh/MeshImport.h"
-#include "mesh/MeshRepair.h"
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/mesh/MeshImport.h>
+#include <BulletBuoyancy/mesh/MeshRepair.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 
 #include <Eigen/Geometry>
 

@@ -1,11 +1,11 @@
-// btBuoyancyCheckBody (issue 10): it must catch every broken invariant (each test below breaks one on
+// btBuoyancyCheckBody: it must catch every broken invariant (each test below breaks one on
 // purpose and expects the check to name it), and the bodies btBuoyantBody builds must pass it — mass > 0
 // and positive-definite inertia — even for degenerate mass distributions (ballast on a line, a thin rod,
 // a shell).
 
 #include "reliability/ReliabilityHelpers.h"
 
-#include "mesh/PrimitiveMeshes.h"
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 
 #include <catch2/catch.hpp>
 

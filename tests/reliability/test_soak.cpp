@@ -1,4 +1,4 @@
-// Soak (issue 10): many random bodies (shapes, methods, densities, mass models, ballast, drag settings,
+// Soak: many random bodies (shapes, methods, densities, mass models, ballast, drag settings,
 // poses, velocities), some holding a water graph that floods through permeable regions, settings and mass
 // changed on the fly, for many substeps in Gerstner waves. After every substep every body passes
 // btBuoyancyCheckBody (finite pose and velocities, mass > 0, positive-definite inertia), no action ever
@@ -8,9 +8,9 @@
 
 #include "reliability/ReliabilityHelpers.h"
 
-#include "graph/WaterIngress.h"
-#include "mesh/PrimitiveMeshes.h"
-#include "water/btGerstnerWaterSurface.h"
+#include <BulletBuoyancy/graph/WaterIngress.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 
 #include <catch2/catch.hpp>
 

@@ -1,9 +1,9 @@
-// Batch Gerstner queries (issue 9): heights, velocities and their warm-started forms against an independent
+// Batch Gerstner queries: heights, velocities and their warm-started forms against an independent
 // evaluation written here in long double — the trochoid forward map x = x0 − Σ Q A k̂ sin θ, y = h + Σ A cos θ,
 // inverted by plain fixed-point iteration (a contraction of factor Σ Q A k, no Newton), and the velocity as an
 // 8th-order central finite difference in time of each wave's particle displacement (Airy decay below h).
 // Required: 1e-12 of Σ A (heights, m) and of Σ A ω (velocities, m/s), for steep seas and far points.
-#include "water/btGerstnerWaterSurface.h"
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 
 #include <catch2/catch.hpp>
 
@@ -99,7 +99,7 @@ struct Oracle {
     }
 };
 
-/// The P3 benchmark's sea (bullet_examples/benchmark/Scaling.cpp p3Sea), Σ Q A k ≈ 0.22.
+/// The benchmark's scaling sea (bullet_examples/benchmark/Scaling.cpp p3Sea), Σ Q A k ≈ 0.22.
 std::vector<btGerstnerWave> p3Sea() {
     return {{1.0, 60.0, 1.0, 0.0, 0.5, 0.0},
             {0.6, 35.0, 0.8, 0.6, 0.5, 1.3},
@@ -161,7 +161,7 @@ TEST_CASE("gerstner batch: cold heights and velocities equal the independent eva
         const char* name;
         std::vector<btGerstnerWave> waves;
     };
-    const std::vector<Sea> seas = {{"P3 sea", p3Sea()},
+    const std::vector<Sea> seas = {{"scaling sea", p3Sea()},
                                    {"steep, 4 waves, sum QAk = 0.95", steepSea(0.95, 4)},
                                    {"moderate, 20 waves (heap scratch)", steepSea(0.5, 20)},
                                    {"one wave, sum QAk = 0.97", steepSea(0.97, 1)}};

@@ -1,11 +1,11 @@
-// Issue 5: the choppy FFT ocean's inversion against the forward parametric surface. The forward map is
+// The choppy FFT ocean's inversion against the forward parametric surface. The forward map is
 // rebuilt here from the documented convention (btFftOceanSurface.h): the point at rest x₀ moves to
 // x = x₀ − λ D(x₀), y = h + η(x₀), where D is the Riesz transform of the elevation, D = Σ (−i k/|k|) η̂(k) e^{ik·x}
 // (zero and Nyquist modes excluded). D is computed here by a direct DFT of the elevation field (no FFT, no
 // library code), so the height the library inverts at x must equal the elevation at the rest point.
 #include <catch2/catch.hpp>
 
-#include "water/btFftOceanSurface.h"
+#include <BulletBuoyancy/water/btFftOceanSurface.h>
 
 #include <cmath>
 #include <complex>
@@ -58,7 +58,7 @@ double bilinear(const std::vector<double>& f, int N, double h, double x, double 
 
 }  // namespace
 
-TEST_CASE("fft ocean: choppy inversion agrees with the forward parametric surface; choppiness 0 is plain", "[water][fft]") {
+TEST_CASE("fft ocean: choppy inversion agrees with the forward parametric surface, choppiness 0 is plain", "[water][fft]") {
     btFftOceanSettings s;
     s.resolution = 32;
     s.patchSize = 64;

@@ -1,6 +1,6 @@
-// Gerstner waves (issue 5): inversion residual, agreement with the forward parametric surface written
+// Gerstner waves: inversion residual, agreement with the forward parametric surface written
 // here independently, orbital velocity against a finite difference of that surface, loop rejection.
-#include "water/btGerstnerWaterSurface.h"
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 
 #include <catch2/catch.hpp>
 

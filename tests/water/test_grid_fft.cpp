@@ -1,8 +1,8 @@
-// Grid and FFT ocean surfaces (issue 5): bilinear exactness, wrap/clamp, bounds; FFT mean level, variance
+// Grid and FFT ocean surfaces: bilinear exactness, wrap/clamp, bounds; FFT mean level, variance
 // against the spectrum's integral (Parseval, spectrum written here independently), time derivative,
 // determinism with a seed, choppy inversion.
-#include "water/btFftOceanSurface.h"
-#include "water/btGridWaterSurface.h"
+#include <BulletBuoyancy/water/btFftOceanSurface.h>
+#include <BulletBuoyancy/water/btGridWaterSurface.h>
 
 #include <catch2/catch.hpp>
 

@@ -1,12 +1,12 @@
-// Issue 5: the interactive height field must not creep at fine resolution. Oracles: conservation (the grid's
+// The interactive height field must not creep at fine resolution. Oracles: conservation (the grid's
 // water volume Σ (η − h) A is zero at all times: the coupler only moves displaced water), the open-sea level
 // far from the bodies (h, up to the displaced volume spread over the grid), and Archimedes for the floating
 // boxes (draft s·c).
 #include <catch2/catch.hpp>
 
-#include "cli/SceneFile.h"
-#include "cli/SceneWorld.h"
-#include "water/btInteractiveWaterSurface.h"
+#include "scene/SceneFile.h"
+#include "scene/SceneWorld.h"
+#include <BulletBuoyancy/water/btInteractiveWaterSurface.h>
 
 #include <cmath>
 #include <sstream>

@@ -1,15 +1,15 @@
-// Bodies in waves (issue 5): the horizontal pressure push on a slope (against the exact divergence-theorem
+// Bodies in waves: the horizontal pressure push on a slope (against the exact divergence-theorem
 // result), a small buoy following a long Gerstner wave, and the interactive grid's volume conservation
 // and ring speed.
-#include "bullet/btBuoyancyAction.h"
-#include "bullet/btBuoyancyWorld.h"
-#include "bullet/btBuoyantBodyBuilder.h"
-#include "integrals/Hydrostatics.h"
-#include "mesh/PrimitiveMeshes.h"
-#include "water/btGerstnerWaterSurface.h"
-#include "water/btGridWaterSurface.h"
-#include "water/btInteractiveWaterCoupler.h"
-#include "water/btInteractiveWaterSurface.h"
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btGridWaterSurface.h>
+#include <BulletBuoyancy/bullet/btInteractiveWaterCoupler.h>
+#include <BulletBuoyancy/water/btInteractiveWaterSurface.h>
 
 #include <btBulletDynamicsCommon.h>
 #include <catch2/catch.hpp>

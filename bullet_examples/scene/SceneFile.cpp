@@ -1,0 +1,406 @@
+#include "scene/SceneFile.h"
+
+#include "scene/SceneErrors.h"
+#include "scene/SceneJsonReader.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace buoyancy::cli {
+
+namespace {
+
+using json = nlohmann::json;
+
+/// The scene reader: SceneJsonReader whose failures are usage errors naming the file (exit 2).
+class Reader : public SceneJsonReader {
+public:
+    explicit Reader(const std::string& source)
+        : SceneJsonReader([source](const std::string& key, const std::string& what) {
+              throw UsageError(source + ": " + key + ": " + what);
+          }) {}
+};
+
+constexpr double kBig = 1e6;  // bounds for lengths, m, and speeds
+
+SceneShape readShape(const Reader& r, const json& j, const std::string& key, const std::string& directory) {
+    r.requireObject(j, key);
+    if (!j.contains("type")) r.fail(key + ".type", "missing (box, sphere, cylinder or mesh)");
+    SceneShape s;
+    s.type = r.string(j["type"], key + ".type");
+    if (s.type == "box") {
+        r.allowKeys(j, key, {"type", "size"});
+        if (!j.contains("size")) r.fail(key + ".size", "missing");
+        s.size = r.vec3(j["size"], key + ".size", 0.0, kBig, true);
+    } else if (s.type == "sphere" || s.type == "cylinder") {
+        if (s.type == "sphere") r.allowKeys(j, key, {"type", "radius", "resolution"});
+        else r.allowKeys(j, key, {"type", "radius", "height", "resolution"});
+        if (!j.contains("radius")) r.fail(key + ".radius", "missing");
+        s.radius = r.number(j["radius"], key + ".radius", 0.0, kBig, true);
+        if (s.type == "cylinder") {
+            if (!j.contains("height")) r.fail(key + ".height", "missing");
+            s.height = r.number(j["height"], key + ".height", 0.0, kBig, true);
+        }
+        if (j.contains("resolution")) s.resolution = r.integer(j["resolution"], key + ".resolution", 8, 1024);
+    } else if (s.type == "mesh") {
+        r.allowKeys(j, key, {"type", "file", "scale"});
+        if (!j.contains("file")) r.fail(key + ".file", "missing");
+        const std::string file = r.string(j["file"], key + ".file");
+        std::filesystem::path p(file);
+        if (p.is_relative()) p = std::filesystem::path(directory) / p;
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(p, ec)) r.fail(key + ".file", "no such file: " + p.string());
+        s.file = p.string();
+        if (j.contains("scale")) s.scale = r.number(j["scale"], key + ".scale", 0.0, kBig, true);
+    } else {
+        r.fail(key + ".type", "unknown shape type \"" + s.type + "\" (box, sphere, cylinder or mesh)");
+    }
+    return s;
+}
+
+btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::string& key) {
+    r.requireObject(j, key);
+    r.allowKeys(j, key, {"method", "texture", "drag_coefficient", "skin_friction", "linear_damping", "added_mass",
+                         "added_mass_coefficient", "error_budget", "drag_clusters", "water_patch_nodes",
+                         "water_patch_nodes_per_wavelength", "hydrostatics_interval",
+                         "hydrostatics_reuse_tolerance"});
+    btBuoyancySettings b;
+    if (j.contains("method")) {
+        const std::string m = r.string(j["method"], key + ".method");
+        try {
+            b.method = btBuoyancyMethodFromName(m);
+        } catch (const std::invalid_argument& e) {
+            r.fail(key + ".method", e.what());
+        }
+    }
+    if (j.contains("texture")) b.textureSize = r.integer(j["texture"], key + ".texture", 1, 16384);
+    // Automatic level of detail and the level-of-detail knobs (btBuoyancySettings).
+    if (j.contains("error_budget")) b.errorBudget = r.number(j["error_budget"], key + ".error_budget", 0, 100);
+    if (j.contains("drag_clusters")) b.dragClusters = r.integer(j["drag_clusters"], key + ".drag_clusters", 0, 1000000);
+    if (j.contains("water_patch_nodes")) {
+        b.waterPatchNodes = r.integer(j["water_patch_nodes"], key + ".water_patch_nodes", 0, 64);
+        if (b.waterPatchNodes != 0 && b.waterPatchNodes < 5)
+            r.fail(key + ".water_patch_nodes", "must be 0 (exact wave queries) or in 5..64");
+    }
+    if (j.contains("water_patch_nodes_per_wavelength"))
+        b.waterPatchNodesPerWavelength = r.number(j["water_patch_nodes_per_wavelength"],
+                                                  key + ".water_patch_nodes_per_wavelength", 0, 1000);
+    if (j.contains("hydrostatics_interval"))
+        b.hydrostaticsInterval = r.integer(j["hydrostatics_interval"], key + ".hydrostatics_interval", 0, 16);
+    if (j.contains("hydrostatics_reuse_tolerance"))
+        b.hydrostaticsReuseTolerance =
+            r.number(j["hydrostatics_reuse_tolerance"], key + ".hydrostatics_reuse_tolerance", 0, 1, true);
+    if (j.contains("drag_coefficient")) b.dragCoefficient = r.number(j["drag_coefficient"], key + ".drag_coefficient", 0, 100);
+    if (j.contains("skin_friction")) b.skinFriction = r.number(j["skin_friction"], key + ".skin_friction", 0, 100);
+    if (j.contains("linear_damping")) b.linearDamping = r.number(j["linear_damping"], key + ".linear_damping", 0, 100);
+    if (j.contains("added_mass")) b.addedMass = r.boolean(j["added_mass"], key + ".added_mass");
+    if (j.contains("added_mass_coefficient"))
+        b.addedMassCoefficient = r.number(j["added_mass_coefficient"], key + ".added_mass_coefficient", 0, 100);
+    return b;
+}
+
+SceneBody readBody(const Reader& r, const json& j, const std::string& key, std::size_t index,
+                   const std::string& directory) {
+    r.requireObject(j, key);
+    r.allowKeys(j, key, {"name", "shape", "density", "mass", "mass_model", "thickness", "position", "rotation",
+                         "linear_velocity", "angular_velocity", "buoyancy", "ballast", "fixed", "collision",
+                         "water_graph", "permeability", "density_map"});
+    SceneBody b;
+    b.name = j.contains("name") ? r.string(j["name"], key + ".name") : "body" + std::to_string(index);
+    if (b.name.empty()) r.fail(key + ".name", "must not be empty");
+    if (b.name.find_first_of(",\"\n\r") != std::string::npos) r.fail(key + ".name", "must not contain , \" or newlines");
+    if (!j.contains("shape")) r.fail(key + ".shape", "missing");
+    b.shape = readShape(r, j["shape"], key + ".shape", directory);
+
+    if (j.contains("fixed")) b.body.fixed = r.boolean(j["fixed"], key + ".fixed");
+    const bool hasDensity = j.contains("density"), hasMass = j.contains("mass");
+    if (hasDensity == hasMass && !b.body.fixed)
+        r.fail(key, hasDensity ? "give exactly one of \"density\" and \"mass\", not both"
+                               : "missing \"density\" or \"mass\"");
+    if (hasDensity && hasMass) r.fail(key, "give at most one of \"density\" and \"mass\"");
+    if (hasDensity) b.body.density = r.number(j["density"], key + ".density", 0.0, 1e6, true);
+    if (hasMass) {
+        b.body.mass = r.number(j["mass"], key + ".mass", 0.0, 1e12, true);
+    }
+    if (j.contains("mass_model")) {
+        const std::string mm = r.string(j["mass_model"], key + ".mass_model");
+        if (mm == "solid") b.body.massModel = btBuoyantMassModel::Solid;
+        else if (mm == "shell") b.body.massModel = btBuoyantMassModel::Shell;
+        else r.fail(key + ".mass_model", "unknown value \"" + mm + "\" (solid or shell)");
+    }
+    if (j.contains("thickness")) {
+        if (b.body.massModel != btBuoyantMassModel::Shell) r.fail(key + ".thickness", "only with \"mass_model\": \"shell\"");
+        b.body.shellThickness = r.number(j["thickness"], key + ".thickness", 0.0, kBig, true);
+    } else if (b.body.massModel == btBuoyantMassModel::Shell) {
+        r.fail(key + ".thickness", "missing (required with \"mass_model\": \"shell\")");
+    }
+    if (j.contains("position")) b.position = r.vec3(j["position"], key + ".position", -kBig, kBig);
+    if (j.contains("rotation")) {
+        const json& rot = j["rotation"];
+        const std::string rk = key + ".rotation";
+        r.requireObject(rot, rk);
+        r.allowKeys(rot, rk, {"axis", "degrees"});
+        if (rot.contains("axis")) b.axis = r.vec3(rot["axis"], rk + ".axis", -kBig, kBig);
+        if (!(b.axis.norm() > 1e-12)) r.fail(rk + ".axis", "zero axis");
+        b.axis.normalize();
+        if (rot.contains("degrees")) b.degrees = r.number(rot["degrees"], rk + ".degrees", -1e6, 1e6);
+    }
+    if (j.contains("linear_velocity")) b.linearVelocity = r.vec3(j["linear_velocity"], key + ".linear_velocity", -kBig, kBig);
+    if (j.contains("angular_velocity"))
+        b.angularVelocity = r.vec3(j["angular_velocity"], key + ".angular_velocity", -kBig, kBig);
+    if (j.contains("buoyancy")) b.buoyancy = readBuoyancy(r, j["buoyancy"], key + ".buoyancy");
+    if (j.contains("ballast")) {
+        const json& bl = j["ballast"];
+        if (!bl.is_array()) r.fail(key + ".ballast", "expected an array of {\"position\", \"mass\"}");
+        for (std::size_t i = 0; i < bl.size(); ++i) {
+            const std::string bk = key + ".ballast[" + std::to_string(i) + "]";
+            r.requireObject(bl[i], bk);
+            r.allowKeys(bl[i], bk, {"position", "mass"});
+            if (!bl[i].contains("position")) r.fail(bk + ".position", "missing");
+            if (!bl[i].contains("mass")) r.fail(bk + ".mass", "missing");
+            btBuoyantBallast ballast;
+            ballast.position = r.vec3(bl[i]["position"], bk + ".position", -kBig, kBig);
+            ballast.mass = r.number(bl[i]["mass"], bk + ".mass", 0.0, 1e12, true);
+            b.body.ballast.push_back(ballast);
+        }
+    }
+    if (j.contains("collision")) {
+        const std::string c = r.string(j["collision"], key + ".collision");
+        if (c == "hull") b.body.collision = btBuoyantCollision::ConvexHull;
+        else if (c == "mesh") b.body.collision = btBuoyantCollision::TriangleMesh;
+        else if (c == "none") b.body.collision = btBuoyantCollision::None;
+        else r.fail(key + ".collision", "unknown value \"" + c + "\" (hull, mesh or none)");
+    }
+    b.flooding = readSceneFlooding(j, key, directory, [&](const std::string& k, const std::string& w) { r.fail(k, w); });
+    if (b.flooding.enabled && b.body.fixed) r.fail(key + ".water_graph", "a fixed body cannot hold water");
+    if (b.flooding.densityMap.enabled) {  // paper Fig. 15 (SceneGraph.h: SceneDensityMap)
+        if (b.body.fixed) r.fail(key + ".density_map", "a fixed body has no mass to distribute");
+        if (!hasMass) r.fail(key + ".density_map", "needs \"mass\" (the total dry mass the map distributes), not \"density\"");
+        if (j.contains("mass_model")) r.fail(key + ".density_map", "give either \"mass_model\" or \"density_map\"");
+        b.body.massModel = btBuoyantMassModel::DensityMap;
+        b.body.arealDensity = [](const Eigen::Vector3d&) { return 1.0; };  // replaced by the map when the body is built
+    }
+    return b;
+}
+
+// ---- The "water" block (keys and defaults in docs/scene-format.md) ----
+
+/// [a, b]: two numbers in [lo, hi].
+Eigen::Vector2d vec2(const Reader& r, const json& j, const std::string& key, double lo, double hi) {
+    if (!j.is_array() || j.size() != 2) r.fail(key, "expected an array of 2 numbers");
+    return Eigen::Vector2d(r.number(j[0], key + "[0]", lo, hi), r.number(j[1], key + "[1]", lo, hi));
+}
+
+/// A non-zero horizontal direction [dx, dz].
+Eigen::Vector2d direction2(const Reader& r, const json& j, const std::string& key) {
+    const Eigen::Vector2d d = vec2(r, j, key, -kBig, kBig);
+    if (!(d.norm() > 0)) r.fail(key, "must not be [0, 0]");
+    return d.normalized();
+}
+
+/// Height grid CSV: one row per z sample, one column per x sample, comma-separated numbers; empty lines
+/// and lines starting with '#' are skipped; every row must have the same number of values.
+void readHeightCsv(const Reader& r, const std::string& path, const std::string& key, SceneWater& w) {
+    std::error_code ec;  // a directory opens as a stream but fails on the first read
+    if (!std::filesystem::is_regular_file(path, ec)) r.fail(key, "cannot read " + path + " (not a file)");
+    std::ifstream in(path);
+    if (!in) r.fail(key, "cannot read " + path);
+    std::string line;
+    int row = 0, lineNo = 0;
+    while (std::getline(in, line)) {
+        ++lineNo;
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || line[first] == '#') continue;
+        std::stringstream ls(line);
+        std::string cell;
+        int cols = 0;
+        while (std::getline(ls, cell, ',')) {
+            char* end = nullptr;
+            const double v = std::strtod(cell.c_str(), &end);
+            while (end && (*end == ' ' || *end == '\t' || *end == '\r')) ++end;
+            if (end == cell.c_str() || (end && *end != '\0') || !std::isfinite(v))
+                r.fail(key, path + " line " + std::to_string(lineNo) + ": \"" + cell + "\" is not a finite number");
+            w.gridHeights.push_back(v);
+            ++cols;
+        }
+        if (row == 0) w.gridNx = cols;
+        else if (cols != w.gridNx)
+            r.fail(key, path + " line " + std::to_string(lineNo) + ": " + std::to_string(cols) + " values, expected " +
+                            std::to_string(w.gridNx) + " like the first row");
+        ++row;
+    }
+    w.gridNz = row;
+    if (w.gridNx < 2 || w.gridNz < 2) r.fail(key, path + ": needs at least 2 rows of at least 2 values");
+}
+
+void readWater(const Reader& r, const json& w, Scene& s, const std::string& directory) {
+    r.requireObject(w, "water");
+    SceneWater& out = s.water;
+    out.type = w.contains("type") ? r.string(w["type"], "water.type") : "flat";
+    const std::string& t = out.type;
+    if (t == "flat") r.allowKeys(w, "water", {"type", "height", "density", "current"});
+    else if (t == "gerstner") r.allowKeys(w, "water", {"type", "height", "density", "waves"});
+    else if (t == "grid") r.allowKeys(w, "water", {"type", "density", "file", "origin", "spacing", "periodic"});
+    else if (t == "fft")
+        r.allowKeys(w, "water", {"type", "height", "density", "resolution", "patch_size", "wind_speed", "wind_direction",
+                                 "spectrum", "choppiness", "seed"});
+    else if (t == "interactive")
+        r.allowKeys(w, "water", {"type", "height", "density", "size", "centre", "resolution", "wave_speed", "damping"});
+    else r.fail("water.type", "unknown value \"" + t + "\" (flat, gerstner, grid, fft or interactive)");
+    if (w.contains("height")) s.waterHeight = r.number(w["height"], "water.height", -kBig, kBig);
+    if (w.contains("density")) s.waterDensity = r.number(w["density"], "water.density", 0.0, 1e5, true);
+    const double g = -s.gravity.y();
+
+    if (t == "flat") {
+        if (w.contains("current")) out.current = vec2(r, w["current"], "water.current", -kBig, kBig);
+    } else if (t == "gerstner") {
+        if (!w.contains("waves")) r.fail("water.waves", "missing (an array of waves)");
+        if (!w["waves"].is_array()) r.fail("water.waves", "expected an array");
+        for (std::size_t i = 0; i < w["waves"].size(); ++i) {
+            const json& jw = w["waves"][i];
+            const std::string key = "water.waves[" + std::to_string(i) + "]";
+            r.requireObject(jw, key);
+            r.allowKeys(jw, key, {"amplitude", "wavelength", "direction", "steepness", "phase"});
+            btGerstnerWave wave;
+            if (!jw.contains("amplitude")) r.fail(key + ".amplitude", "missing");
+            if (!jw.contains("wavelength")) r.fail(key + ".wavelength", "missing");
+            wave.amplitude = r.number(jw["amplitude"], key + ".amplitude", 0.0, kBig);
+            wave.wavelength = r.number(jw["wavelength"], key + ".wavelength", 0.0, kBig, true);
+            if (jw.contains("direction")) {
+                const Eigen::Vector2d d = direction2(r, jw["direction"], key + ".direction");
+                wave.directionX = d.x();
+                wave.directionZ = d.y();
+            }
+            wave.steepness = jw.contains("steepness") ? r.number(jw["steepness"], key + ".steepness", 0.0, kBig) : 0.5;
+            if (jw.contains("phase")) wave.phase = r.number(jw["phase"], key + ".phase", -kBig, kBig);
+            out.waves.push_back(wave);
+        }
+        try {  // the loop condition Σ Q A k < 1 (and every field) checked by the surface itself
+            btGerstnerWaterSurface check(out.waves, s.waterHeight, g > 0 ? g : 9.81);
+        } catch (const std::invalid_argument& e) {
+            r.fail("water", e.what());
+        }
+    } else if (t == "grid") {
+        if (!w.contains("file")) r.fail("water.file", "missing (a CSV of heights: rows = z, columns = x)");
+        std::filesystem::path p(r.string(w["file"], "water.file"));
+        if (p.is_relative()) p = std::filesystem::path(directory) / p;
+        out.gridFile = p.string();
+        if (!w.contains("spacing")) r.fail("water.spacing", "missing (distance between samples, m)");
+        out.gridSpacing = r.number(w["spacing"], "water.spacing", 0.0, kBig, true);
+        if (w.contains("origin")) out.gridOrigin = vec2(r, w["origin"], "water.origin", -kBig, kBig);
+        if (w.contains("periodic")) out.gridPeriodic = r.boolean(w["periodic"], "water.periodic");
+        readHeightCsv(r, out.gridFile, "water.file", out);
+    } else if (t == "fft") {
+        btFftOceanSettings& f = out.fft;
+        if (w.contains("resolution")) {
+            f.resolution = r.integer(w["resolution"], "water.resolution", 4, 4096);
+            if (f.resolution % 2) r.fail("water.resolution", "must be even");
+        }
+        if (w.contains("patch_size")) f.patchSize = r.number(w["patch_size"], "water.patch_size", 0.0, kBig, true);
+        if (w.contains("wind_speed")) f.windSpeed = r.number(w["wind_speed"], "water.wind_speed", 0.0, 200.0, true);
+        if (w.contains("wind_direction")) {
+            const Eigen::Vector2d d = direction2(r, w["wind_direction"], "water.wind_direction");
+            f.windDirectionX = d.x();
+            f.windDirectionZ = d.y();
+        }
+        if (w.contains("spectrum")) {
+            const std::string sp = r.string(w["spectrum"], "water.spectrum");
+            if (sp == "phillips") f.spectrum = btFftOceanSettings::Spectrum::Phillips;
+            else if (sp == "jonswap") f.spectrum = btFftOceanSettings::Spectrum::Jonswap;
+            else r.fail("water.spectrum", "unknown value \"" + sp + "\" (phillips or jonswap)");
+        }
+        if (w.contains("choppiness")) f.choppiness = r.number(w["choppiness"], "water.choppiness", 0.0, 10.0);
+        if (w.contains("seed")) f.seed = std::uint64_t(r.integer(w["seed"], "water.seed", 0, 2147483647));
+        f.height = s.waterHeight;
+        f.gravity = g > 0 ? g : 9.81;
+    } else if (t == "interactive") {
+        if (w.contains("size")) {
+            out.size = vec2(r, w["size"], "water.size", 0.0, kBig);
+            if (!(out.size.x() > 0) || !(out.size.y() > 0)) r.fail("water.size", "both extents must be > 0");
+        }
+        if (w.contains("centre")) out.centre = vec2(r, w["centre"], "water.centre", -kBig, kBig);
+        if (w.contains("resolution")) out.resolution = r.integer(w["resolution"], "water.resolution", 4, 4096);
+        if (w.contains("wave_speed")) out.waveSpeed = r.number(w["wave_speed"], "water.wave_speed", 0.0, 1e3, true);
+        if (w.contains("damping")) out.damping = r.number(w["damping"], "water.damping", 0.0, 1e3);
+        const double dx = out.size.x() / out.resolution;
+        if (out.size.y() / dx > 4096.5) r.fail("water.size", "more than 4096 cells along z at this resolution");
+    }
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::string& sourceName, const std::string& directory) {
+    const Reader r(sourceName);
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers like 1e400
+        throw UsageError(sourceName + ": invalid JSON: " + e.what());
+    }
+    r.requireObject(j, "");
+    r.allowKeys(j, "", {"gravity", "dt", "substeps_per_frame", "duration", "output_interval", "water", "bodies",
+                        "ground", "camera"});
+    Scene s;
+    s.directory = directory;
+    if (j.contains("gravity")) {
+        s.gravity = r.vec3(j["gravity"], "gravity", -1e3, 1e3);
+        if (s.gravity.x() != 0 || s.gravity.z() != 0 || !(s.gravity.y() < 0))
+            r.fail("gravity", "must point down y, e.g. [0, -9.81, 0] (the water is a height field in y)");
+    }
+    if (j.contains("dt")) s.dt = r.number(j["dt"], "dt", 1e-6, 1.0, false);
+    if (j.contains("substeps_per_frame")) s.substepsPerFrame = r.integer(j["substeps_per_frame"], "substeps_per_frame", 1, 1000);
+    if (j.contains("duration")) s.duration = r.number(j["duration"], "duration", 0.0, 1e6);
+    if (j.contains("output_interval")) s.outputInterval = r.number(j["output_interval"], "output_interval", 0.0, 1e6, true);
+    if (j.contains("water")) readWater(r, j["water"], s, directory);
+    if (j.contains("ground")) {
+        const json& g = j["ground"];
+        r.requireObject(g, "ground");
+        r.allowKeys(g, "ground", {"height", "normal"});
+        s.groundHeight = g.contains("height") ? r.number(g["height"], "ground.height", -kBig, kBig) : 0.0;
+        if (g.contains("normal")) {  // a sloped floor (a beach) through (0, height, 0)
+            s.groundNormal = r.vec3(g["normal"], "ground.normal", -kBig, kBig);
+            if (!(s.groundNormal.norm() > 1e-12)) r.fail("ground.normal", "zero vector");
+            s.groundNormal.normalize();
+            if (!(s.groundNormal.y() >= 0.1))
+                r.fail("ground.normal", "must point up (y component of the unit normal >= 0.1, slope <= 84 degrees)");
+        }
+    }
+    if (j.contains("camera")) {  // the view of the pictures and the browser
+        const json& c = j["camera"];
+        r.requireObject(c, "camera");
+        r.allowKeys(c, "camera", {"target", "distance", "yaw", "pitch"});
+        if (c.contains("target")) s.camera.target = r.vec3(c["target"], "camera.target", -kBig, kBig);
+        if (c.contains("distance")) s.camera.distance = r.number(c["distance"], "camera.distance", 0.1, 1e4);
+        if (c.contains("yaw")) s.camera.yaw = r.number(c["yaw"], "camera.yaw", -360.0, 360.0);
+        if (c.contains("pitch")) s.camera.pitch = r.number(c["pitch"], "camera.pitch", -89.0, 89.0);
+    }
+    if (!j.contains("bodies")) r.fail("bodies", "missing");
+    if (!j["bodies"].is_array()) r.fail("bodies", "expected an array");
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < j["bodies"].size(); ++i) {
+        const std::string key = "bodies[" + std::to_string(i) + "]";
+        s.bodies.push_back(readBody(r, j["bodies"][i], key, i, directory));
+        if (!names.insert(s.bodies.back().name).second)
+            r.fail(key + ".name", "duplicate name \"" + s.bodies.back().name + "\"");
+    }
+    return s;
+}
+
+Scene loadSceneFile(const std::string& path) {
+    std::error_code ec;  // a directory opens as a stream but fails on the first read
+    if (!std::filesystem::is_regular_file(path, ec)) throw UsageError(path + ": cannot read the scene file (not a file)");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw UsageError(path + ": cannot read the scene file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::filesystem::path p(path);
+    return parseScene(text.str(), p.filename().string(), p.parent_path().empty() ? "." : p.parent_path().string());
+}
+
+}  // namespace buoyancy::cli

@@ -1,0 +1,101 @@
+#pragma once
+/// @file SceneFile.h
+/// The JSON scene format of `buoyancy run` (documented in docs/scene-format.md): parsed and validated
+/// completely before anything runs. Every error names the file and the key, e.g.
+/// "boat.json: bodies[1].shape.size: expected an array of 3 numbers > 0".
+
+#include <BulletBuoyancy/bullet/btBuoyancySettings.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/water/btFftOceanSurface.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include "scene/SceneGraph.h"
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace buoyancy::cli {
+
+/// Shape of a scene body.
+struct SceneShape {
+    std::string type;                                  ///< "box", "sphere", "cylinder", "mesh"
+    Eigen::Vector3d size = Eigen::Vector3d::Ones();    ///< box full extents, m
+    double radius = 0.5;                               ///< sphere / cylinder radius, m
+    double height = 1.0;                               ///< cylinder full height (axis y), m
+    int resolution = 128;                              ///< primitive segments around (sphere: rings = resolution/2)
+    std::string file;                                  ///< mesh file, resolved against the scene's folder
+    double scale = 1.0;                                ///< mesh scale
+};
+
+/// One body of a scene.
+struct SceneBody {
+    std::string name;
+    SceneShape shape;
+    btBuoyantBodySettings body;       ///< density or mass, mass model, ballast, collision, fixed
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();   ///< mesh frame origin in world, m
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitY();      ///< rotation axis (normalised)
+    double degrees = 0;                                   ///< rotation angle, degrees
+    Eigen::Vector3d linearVelocity = Eigen::Vector3d::Zero();  ///< COM velocity, world, m/s
+    Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero(); ///< world, rad/s
+    btBuoyancySettings buoyancy;      ///< the "buoyancy" block (library defaults when absent)
+    SceneFlooding flooding;           ///< "water_graph" and "permeability" (SceneGraph.h)
+};
+
+/// The "water" block: which surface and its parameters (docs/scene-format.md lists keys and defaults).
+/// Level and density live in Scene::waterHeight / Scene::waterDensity.
+struct SceneWater {
+    std::string type = "flat";                     ///< "flat", "gerstner", "grid", "fft", "interactive"
+    Eigen::Vector2d current = Eigen::Vector2d::Zero(); ///< flat: uniform current [vx, vz], m/s
+    std::vector<btGerstnerWave> waves;             ///< gerstner
+    std::string gridFile;                          ///< grid: CSV path (resolved), rows = z, columns = x
+    int gridNx = 0, gridNz = 0;                    ///< grid: samples along x, z
+    std::vector<double> gridHeights;               ///< grid: nx·nz heights, m, index j·nx + i
+    Eigen::Vector2d gridOrigin = Eigen::Vector2d::Zero(); ///< grid: world [x, z] of the first sample, m
+    double gridSpacing = 1.0;                      ///< grid: m
+    bool gridPeriodic = true;                      ///< grid: wrap (true) or clamp
+    btFftOceanSettings fft;                        ///< fft (height and gravity filled from the scene)
+    Eigen::Vector2d size = Eigen::Vector2d(20, 20); ///< interactive: extent [x, z], m
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero(); ///< interactive: world centre [x, z], m
+    int resolution = 128;                          ///< interactive: cells along x
+    double waveSpeed = 2.0;                        ///< interactive: c, m/s
+    double damping = 0.1;                          ///< interactive: γ, 1/s
+};
+
+/// The "camera" block: the view of `buoyancy run --png` and of the scene browser. Fields left out are
+/// chosen to frame the bodies at t = 0.
+struct SceneCamera {
+    std::optional<Eigen::Vector3d> target; ///< point looked at, world, m
+    std::optional<double> distance;        ///< eye–target distance, m
+    std::optional<double> yaw;             ///< eye rotation about +y, degrees (0: eye on +z)
+    std::optional<double> pitch;           ///< eye elevation above the target, degrees
+};
+
+/// A whole scene.
+struct Scene {
+    Eigen::Vector3d gravity = Eigen::Vector3d(0, -9.81, 0); ///< m/s², must point down y
+    double dt = 1.0 / 240.0;          ///< fixed substep, s
+    int substepsPerFrame = 4;         ///< stepSimulation(dt·n, n, dt)
+    double duration = 10.0;           ///< s
+    double outputInterval = 0.1;      ///< s
+    double waterHeight = 0.0;         ///< flat water level, m
+    double waterDensity = 1000.0;     ///< kg/m³
+    SceneWater water;                 ///< surface type and parameters
+    std::optional<double> groundHeight; ///< static floor y = h
+    /// Unit normal of the floor (world); the floor is the plane through (0, h, 0) with this normal (a sloped
+    /// beach when not +y). Key "ground.normal", default [0, 1, 0].
+    Eigen::Vector3d groundNormal = Eigen::Vector3d::UnitY();
+    std::vector<SceneBody> bodies;
+    SceneCamera camera;               ///< "camera": the pictures' and the browser's view
+    std::string directory;            ///< folder of the scene file (mesh paths are relative to it)
+};
+
+/// Read and validate a scene file. @throws UsageError naming the file and key for every problem
+/// (unreadable file, bad JSON, unknown keys, wrong types, out-of-range values, duplicate names, zero axis,
+/// missing mesh files).
+Scene loadSceneFile(const std::string& path);
+
+/// Parse a scene from JSON text; `sourceName` prefixes messages, `directory` resolves mesh paths.
+Scene parseScene(const std::string& text, const std::string& sourceName, const std::string& directory);
+
+}  // namespace buoyancy::cli

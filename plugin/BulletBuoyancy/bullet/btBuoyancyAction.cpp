@@ -1,0 +1,649 @@
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+
+#include <BulletBuoyancy/bullet/btBulletConvert.h>
+#include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
+#include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/integrals/DragKernel.h>
+#include <BulletBuoyancy/geometry/SampleFormulas.h>
+#include <BulletBuoyancy/bullet/btBuoyancyDeviceBackend.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
+
+#include <BulletCollision/CollisionDispatch/btCollisionWorld.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+#include <LinearMath/btIDebugDraw.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+#include <utility>
+
+using buoyancy::toBullet;
+using buoyancy::toEigen;
+
+namespace {
+
+/// Drag clusters shared by every action of one shape at one dragClusters setting (built once: clustering a
+/// 16k-sample shape takes milliseconds, too slow to repeat for 1,000 bodies). Entries of dead shapes are dropped.
+std::shared_ptr<const buoyancy::DragClusters> sharedDragClusters(const std::shared_ptr<const btBuoyancyShape>& shape,
+                                                                 int maxClusters, int maxProbes) {
+    struct Entry {
+        std::weak_ptr<const btBuoyancyShape> shape;
+        int maxClusters, maxProbes;
+        std::shared_ptr<const buoyancy::DragClusters> clusters;
+    };
+    static std::mutex mutex;
+    static std::vector<Entry> entries;
+    std::lock_guard<std::mutex> lock(mutex);
+    entries.erase(std::remove_if(entries.begin(), entries.end(), [](const Entry& e) { return e.shape.expired(); }),
+                  entries.end());
+    for (const Entry& e : entries)
+        if (e.maxClusters == maxClusters && e.maxProbes == maxProbes && e.shape.lock() == shape) return e.clusters;
+    buoyancy::DragClusters c = buoyancy::clusterDragSamples(shape->getDragSamples(), std::size_t(maxClusters));
+    buoyancy::assignVelocityProbes(c, std::size_t(maxProbes));
+    auto clusters = std::make_shared<const buoyancy::DragClusters>(std::move(c));
+    entries.push_back(Entry{shape, maxClusters, maxProbes, clusters});
+    return clusters;
+}
+
+}  // namespace
+
+btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBuoyancyShape> shape,
+                                   btBuoyancyWorld* world, const btBuoyancySettings& settings,
+                                   const btTransform& meshInCom)
+    : m_body(body), m_shape(std::move(shape)), m_world(world), m_settings(settings), m_meshInCom(meshInCom) {
+    if (!m_body) throw std::invalid_argument("body: null");
+    if (!m_shape) throw std::invalid_argument("shape: null");
+    if (!m_world) throw std::invalid_argument("world: null");
+    m_settings.validate();
+    m_ws.resize(m_shape->getSamples().size());
+    selectDragClusters();
+    m_baseLinearSleep = double(m_body->getLinearSleepingThreshold());
+    m_baseAngularSleep = double(m_body->getAngularSleepingThreshold());
+    // Bodies take turns at their exact evaluations (temporal level of detail): staggered by registration order.
+    m_phase = m_world->registerAction(this);
+}
+
+btBuoyancyAction::btBuoyancyAction(btBuoyantBody& body, btBuoyancyWorld* world, const btBuoyancySettings& settings)
+    : btBuoyancyAction(body.getRigidBody(), body.getShape(), world, settings, body.getMeshInComFrame()) {
+    m_owner = &body;
+}
+
+btBuoyancyAction::~btBuoyancyAction() { m_world->unregisterAction(this); }
+
+void btBuoyancyAction::setSettings(const btBuoyancySettings& settings) {
+    settings.validate();
+    const bool recluster = settings.dragClusters != m_settings.dragClusters ||
+                           settings.waterVelocityProbes != m_settings.waterVelocityProbes;
+    m_settings = settings;
+    m_history.clear();  // the records may have been made with other drag or method settings
+    m_adaptedInterval = 0;
+    if (recluster) selectDragClusters();
+}
+
+void btBuoyancyAction::selectDragClusters() {
+    m_drag = sharedDragClusters(m_shape, m_settings.dragClusters, m_settings.waterVelocityProbes);
+    const std::size_t k = m_drag->size();
+    for (auto* v : {&m_dx, &m_dy, &m_dz, &m_dax, &m_day, &m_daz, &m_dhalf, &m_dh, &m_ux, &m_uy, &m_uz}) v->assign(k, 0.0);
+    const std::size_t p = m_drag->probeX.size();
+    for (auto* v : {&m_px, &m_py, &m_pz, &m_pux, &m_puy, &m_puz}) v->assign(p, 0.0);
+    m_dragCache.reset();
+}
+
+buoyancy::HydrostaticsResult btBuoyancyAction::submergedClosedForm(const Eigen::Isometry3d& pose, double rho, double g,
+                                                                   const Eigen::Vector3d& com) const {
+    // design.md 2.5: the whole body under flat water: V_sub = V, C_B = the centre of volume, F = ρ g V ŷ
+    // through C_B (Archimedes; the pressure integral of a closed surface in a linear pressure field).
+    const buoyancy::MassProperties& dry = m_shape->getUnitSolid();
+    buoyancy::HydrostaticsResult h;
+    h.submerged_volume = dry.volume;
+    h.centre_of_buoyancy = pose * dry.centre;
+    h.force = Eigen::Vector3d(0, rho * g * dry.volume, 0);
+    h.torque = (h.centre_of_buoyancy - com).cross(h.force);
+    h.waterline_area = 0;
+    h.waterplane.valid = true;  // no waterline: every moment 0
+    h.wetted_area = m_shape->getUnitShell().mass;  // shell of unit density and thickness: mass = area
+    return h;
+}
+
+btTransform btBuoyancyAction::getMeshInComFrame() const {
+    return m_owner ? m_owner->getMeshInComFrame() : m_meshInCom;
+}
+
+void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy::WaterPatch* patch,
+                                   const Eigen::Vector3d& com, const Eigen::Vector3d& v, const Eigen::Vector3d& w,
+                                   double density, double time, Eigen::Vector3d& force, Eigen::Vector3d& torque,
+                                   Eigen::Vector3d& meanWaterVelocity, bool reuseWater) {
+    // design.md 2.6 (paper eq. 12): per wetted sample, relative velocity v_i = v + ω × (p_i − c) − u(p_i);
+    // pressure drag on front-facing samples F_i = −½ ρ C_d (A_i·v̂_i)|v_i|² v̂_i = −½ ρ C_d (A_i·v_i) v_i;
+    // skin friction on the tangential part −½ ρ C_f |A_i| |v_t| v_t. The samples are the drag clusters
+    // (design.md 2.5, drag level of detail; settings.dragClusters = 0 keeps every fine sample).
+    const buoyancy::DragClusters& c = *m_drag;
+    const std::size_t n = c.size();
+    const btWaterSurface& water = *m_world->getWater();
+    const Eigen::Matrix3d R = pose.linear();
+    const Eigen::Vector3d t = pose.translation();
+    const double r10 = R(1, 0), r11 = R(1, 1), r12 = R(1, 2);
+    {
+        // Centres, area vectors and vertical half extents in the world (design.md 2.4's covariance ramp), several
+        // clusters per instruction (integrals/DragKernel.h).
+        const double Rm[9] = {R(0, 0), R(0, 1), R(0, 2), r10, r11, r12, R(2, 0), R(2, 1), R(2, 2)};
+        const double tv[3] = {t.x(), t.y(), t.z()};
+        buoyancy::DragClusterPose out;
+        out.x = m_dx.data();
+        out.y = m_dy.data();
+        out.z = m_dz.data();
+        out.ax = m_dax.data();
+        out.ay = m_day.data();
+        out.az = m_daz.data();
+        out.halfHeight = m_dhalf.data();
+        buoyancy::poseDragClusters(c, Rm, tv, out);
+    }
+    double flatH = 0;
+    const bool flat = water.isFlat(time, flatH);
+    if (reuseWater) {
+        // Temporal level of detail: the clusters' water heights and velocities of the last exact evaluation
+        // (at most hydrostaticsInterval − 1 substeps old) are kept in m_dh and m_ux/m_uy/m_uz.
+    } else if (flat)
+        std::fill(m_dh.begin(), m_dh.end(), flatH);
+    else if (patch)
+        patch->heights(m_dx.data(), m_dz.data(), n, m_dh.data());
+    else
+        water.heightsCached(m_dx.data(), m_dz.data(), n, time, m_dh.data(), m_dragCache);
+    if (reuseWater) {
+    } else if (flat || m_drag->probeX.size() >= n) {
+        water.velocitiesCached(m_dx.data(), m_dy.data(), m_dz.data(), n, time, m_ux.data(), m_uy.data(), m_uz.data(),
+                               m_dragCache);
+    } else {
+        // Velocity probes (design.md 2.5): one query per probe, each cluster takes its probe's velocity.
+        const std::size_t np = m_drag->probeX.size();
+        for (std::size_t j = 0; j < np; ++j) {
+            const double x = m_drag->probeX[j], y = m_drag->probeY[j], z = m_drag->probeZ[j];
+            m_px[j] = R(0, 0) * x + R(0, 1) * y + R(0, 2) * z + t.x();
+            m_py[j] = r10 * x + r11 * y + r12 * z + t.y();
+            m_pz[j] = R(2, 0) * x + R(2, 1) * y + R(2, 2) * z + t.z();
+        }
+        water.velocitiesCached(m_px.data(), m_py.data(), m_pz.data(), np, time, m_pux.data(), m_puy.data(),
+                               m_puz.data(), m_probeCache);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint32_t j = m_drag->probeOf[i];
+            m_ux[i] = m_pux[j];
+            m_uy[i] = m_puy[j];
+            m_uz[i] = m_puz[j];
+        }
+    }
+    // the per-sample drag lives in geometry/SampleFormulas.h, shared with the OpenCL kernels;
+    // the CPU sums it several clusters per instruction (integrals/DragKernel.h, the same formulas lane by lane).
+    buoyancy::DragMotion motion;
+    motion.kd = 0.5 * density * m_settings.dragCoefficient;
+    motion.kf = 0.5 * density * m_settings.skinFriction;
+    motion.kl = density * m_settings.linearDamping;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) motion.R[3 * i + j] = R(i, j);
+        motion.com[i] = com[i];
+        motion.v[i] = v[i];
+        motion.w[i] = w[i];
+    }
+    buoyancy::DragClusterBatch batch;
+    batch.n = n;
+    batch.x = m_dx.data();
+    batch.y = m_dy.data();
+    batch.z = m_dz.data();
+    batch.ax = m_dax.data();
+    batch.ay = m_day.data();
+    batch.az = m_daz.data();
+    batch.area = c.area.data();
+    batch.cxx = c.cxx.data();
+    batch.cxy = c.cxy.data();
+    batch.cxz = c.cxz.data();
+    batch.cyy = c.cyy.data();
+    batch.cyz = c.cyz.data();
+    batch.czz = c.czz.data();
+    batch.halfHeight = m_dhalf.data();
+    batch.waterHeight = m_dh.data();
+    batch.ux = m_ux.data();
+    batch.uy = m_uy.data();
+    batch.uz = m_uz.data();
+    double part[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    buoyancy::accumulateClusterDrag(batch, motion, part);
+    force = Eigen::Vector3d(part[0], part[1], part[2]);
+    torque = Eigen::Vector3d(part[3], part[4], part[5]);
+    const Eigen::Vector3d uSum(part[6], part[7], part[8]);
+    const double areaSum = part[9];
+    meanWaterVelocity = areaSum > 0 ? Eigen::Vector3d(uSum / areaSum) : Eigen::Vector3d::Zero();
+}
+
+// ---- deformable bodies and device backends ----
+void btBuoyancyAction::setDeformable(std::shared_ptr<btBuoyancyDeformable> deformable) {
+    if (deformable && deformable->getSamples().size() != m_shape->getSamples().size())
+        throw std::invalid_argument("deformable: " + std::to_string(deformable->getSamples().size()) +
+                                    " samples, the action's shape has " + std::to_string(m_shape->getSamples().size()));
+    m_deformable = std::move(deformable);
+}
+
+const buoyancy::SurfaceSamples& btBuoyancyAction::getSamplesInUse() const {
+    return m_deformable ? m_deformable->getSamples() : m_shape->getSamples();
+}
+
+void btBuoyancyAction::dragEvaluationVelocity(const buoyancy::HydrostaticsResult& h, double dt, Eigen::Vector3d& v,
+                                              Eigen::Vector3d& w) const {
+    // Added mass as in updateAction (design.md 2.7): (m + m_a) a = F − m g.
+    const double rho = m_world->getFluidDensity();
+    const double m = 1.0 / double(m_body->getInvMass());
+    const double ma = m_settings.addedMass ? m_settings.addedMassCoefficient * rho * std::max(h.submerged_volume, 0.0) : 0.0;
+    const double meff = m + ma;
+    const Eigen::Vector3d gravityAcc = toEigen(m_body->getGravity());
+    v = toEigen(m_body->getLinearVelocity());
+    w = toEigen(m_body->getAngularVelocity());
+    v += ((h.force - ma * gravityAcc) * dt) / meff + gravityAcc * dt;
+    w += toEigen(m_body->getInvInertiaTensorWorld() * toBullet(Eigen::Vector3d(h.torque * dt)));
+}
+
+void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) {
+    const double dt = double(deltaTimeStep);
+    m_result.applied = false;
+    // A zero, negative or non-finite step applies nothing and leaves the water's clock alone.
+    if (!(dt > 0) || !std::isfinite(dt)) return;
+    m_world->beginSubstepIfNew(m_lastSubstep, dt);
+#ifndef NDEBUG
+    // Misuse check: an action whose body is in another world (a removed body has no broadphase handle and
+    // is skipped below).
+    if (collisionWorld && m_body->getBroadphaseHandle() &&
+        collisionWorld->getCollisionObjectArray().findLinearSearch(m_body) ==
+                              collisionWorld->getCollisionObjectArray().size())
+        btAssert(!"btBuoyancyAction: its body is not in the world; remove the action before the body");
+#else
+    (void)collisionWorld;
+#endif
+    m_result.applied = false;
+    // A body removed from its world while this action stays in it: do nothing until it is back.
+    if (!m_body->getBroadphaseHandle()) return;
+    const btWaterSurface* water = m_world->getWater();
+    if (!water || m_body->getInvMass() == btScalar(0)) return;
+    const bool waves = water->isTimeVarying();
+    if (!m_body->isActive() && !waves) {  // calm water: a sleeping body stays asleep
+        m_needsPrime = true;
+        m_history.clear();
+        return;
+    }
+
+    const double time = m_world->getTime();
+    const double rho = m_world->getFluidDensity();
+    const double g = m_world->getGravity();
+    const Eigen::Isometry3d pose = toEigen(m_body->getWorldTransform() * getMeshInComFrame());
+    const Eigen::Vector3d com = toEigen(m_body->getCenterOfMassPosition());
+    // A NaN/Inf pose (set by the user, or a body Bullet already lost) is refused here: nothing below may
+    // throw through Bullet's stepSimulation (clippedHydrostatics threw invalid_argument).
+    if (!pose.matrix().allFinite() || !com.allFinite()) {
+        ++m_rejected;
+        m_history.clear();
+        return;
+    }
+
+    // Whole body above the highest water point: nothing to do (design.md 2.5).
+    // a deformable body's bounds follow its vertices
+    const Eigen::Vector3d bc = pose * (m_deformable ? m_deformable->getBoundsCentre() : m_shape->getBoundsCentre());
+    const double br = m_deformable ? m_deformable->getBoundsRadius() : m_shape->getBoundsRadius();
+    double lo = 0, hi = 0;
+    water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
+    if (bc.y() - br >= hi) {
+        m_needsPrime = false;  // dry: the missed kick was zero
+        m_history.clear();
+        m_hasLastCom = false;  // out of the water Bullet's own sleeping test is right again
+        m_body->setSleepingThresholds(btScalar(m_baseLinearSleep), btScalar(m_baseAngularSleep));
+        m_result = btBuoyancyResult();
+        m_result.time = time;
+        return;
+    }
+    if (waves) m_body->activate();
+
+    // Temporal level of detail (settings.hydrostaticsInterval, btHydrostaticsHistory): exact at this body's
+    // evaluation substeps, predicted in between while the checks allow it.
+    const std::uint64_t substep = m_world->getSubstep();
+    // This body's interval: the resolved one, or a divisor of it after repeated misses (recordHydrostatics).
+    const int resolved = btBuoyancyResolveInterval(m_settings, dt);
+    if (m_adaptedInterval <= 0 || m_adaptedInterval > resolved || resolved % m_adaptedInterval != 0) {
+        m_adaptedInterval = resolved;
+        m_checkMisses = 0;
+        m_checkPasses = 0;
+    }
+    const int interval = m_adaptedInterval;
+    m_interval = interval;
+    m_tolerance = btBuoyancyResolveReuseTolerance(m_settings);
+    const bool temporalLod =
+        interval > 1 && m_settings.buoyancyEnabled && !m_deformable && !m_world->getDeviceBackend();
+    const bool evaluationSubstep = temporalLod && (substep + m_phase) % std::uint64_t(interval) == 0;
+    btHydrostaticsSnapshot prediction;
+    const bool predicted =
+        temporalLod && !evaluationSubstep && !m_needsPrime &&
+        predictHydrostatics(substep, pose, com, bc.y() - br, bc.y() + br, lo, hi, prediction);
+    buoyancy::HydrostaticsResult h = predicted ? prediction.hydrostatics : buoyancy::HydrostaticsResult();
+
+    // Fewer wave queries (design.md 2.5): on a non-flat surface, one query per node of a small grid over
+    // the body's footprint, interpolated at every vertex, sample and drag cluster.
+    double flatH = 0;
+    const bool flat = water->isFlat(time, flatH);
+    const buoyancy::WaterPatch* patch = nullptr;
+    const bool dragOn =
+        m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 || m_settings.linearDamping > 0;
+    // Only for surfaces whose query is an iterative solve (Gerstner's Newton inversion): a grid, FFT or interactive
+    // surface answers by a lookup cheaper than the interpolation, and its short ripples would be smoothed away.
+    // Its spacing follows the shortest wave (btBuoyancyWaterPatchNodes); a patch with at least as many nodes as the
+    // points it would stand for (vertices or samples, and drag clusters when drag is on) is not built: those are
+    // queried exactly.
+    if (!predicted && !flat && m_settings.waterPatchNodes > 0 && dynamic_cast<const btGerstnerWaterSurface*>(water)) {
+        const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength()));
+        const std::size_t points = (m_shape->getMethod() == btBuoyancyMethod::ExactMesh
+                                        ? m_shape->getMesh().vertices.size()
+                                        : getSamplesInUse().size()) +
+                                   (dragOn ? m_drag->size() : 0);
+        if (nodes * nodes < points) {
+            try {
+                m_patch.build(*water, bc.x(), bc.z(), br, time, int(nodes), m_patchCache);
+                if (m_patch.finite()) patch = &m_patch;
+            } catch (const std::exception&) {
+                patch = nullptr;  // a degenerate footprint: fall back to exact queries
+            }
+        }
+    }
+
+    if (!predicted) m_lastWaterSlope = flat ? 0.0 : patch ? patch->slopeBound() : 1.0;
+
+    const btBuoyancyMethod method = m_shape->getMethod();
+    bool onDevice = false;  // h came from the world's device backend
+    if (m_settings.buoyancyEnabled && !predicted) {
+        try {  // never let an exception escape into Bullet's stepSimulation
+            if (flat && bc.y() + br <= flatH && !m_deformable) {
+                h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (design.md 2.5)
+            } else if (method == btBuoyancyMethod::ExactMesh) {
+                h = buoyancy::treeHydrostatics(m_shape->getMomentTree(), m_shape->getMesh(), pose, *water, time, rho, g,
+                                               com, patch);
+            } else {
+                btBuoyancyDeviceBackend* dev = m_world->getDeviceBackend();  // batched on a device
+                if (dev && dev->hydrostatics(*this, pose, com, h))
+                    onDevice = true;
+                else
+                    h = buoyancy::sampledHydrostatics(getSamplesInUse(), pose, *water, time, rho, g, com, m_ws,
+                                                      &m_waterCache, patch);
+            }
+        } catch (const std::exception&) {
+            ++m_rejected;
+            m_history.clear();
+            return;
+        }
+    }
+
+    // Added mass (design.md 2.7), one scalar on the linear motion: (m + m_a) a = F − m g. Bullet already
+    // applies −g·dt, so the impulse is J = m/(m + m_a)·(F + m_a g_up)·dt.
+    const double m = 1.0 / double(m_body->getInvMass());
+    const double ma = m_settings.addedMass ? m_settings.addedMassCoefficient * rho * std::max(h.submerged_volume, 0.0) : 0.0;
+    const double meff = m + ma;
+    const Eigen::Vector3d gravityAcc = toEigen(m_body->getGravity());
+
+    // Drag is evaluated at the velocity the next substep will integrate: this substep's hydrostatic kick
+    // plus the gravity kick Bullet applies next. At rest in equilibrium that is exactly 0, so drag cannot
+    // shift the draft (with the bare body velocity, −g·dt at rest, linear damping would sink it by b·g·dt/g).
+    Eigen::Vector3d v, w;
+    dragEvaluationVelocity(h, dt, v, w);
+    Eigen::Vector3d dragF = Eigen::Vector3d::Zero(), dragT = Eigen::Vector3d::Zero(), uMean = Eigen::Vector3d::Zero();
+    if (predicted && dragOn &&
+        btHydrostaticsHistory::velocityDeviation(v, w, prediction, m_shape->getBoundsRadius()) <=
+            allowedVelocityDeviation(h.waterline_area, (v - m_lastMeanWaterVelocity).norm() +
+                                                           m_shape->getBoundsRadius() * w.norm())) {
+        // Temporal level of detail: the extrapolated drag, while the motion follows the extrapolated one.
+        dragF = prediction.dragForce;
+        dragT = prediction.dragTorque;
+        uMean = m_lastMeanWaterVelocity;
+    } else if (dragOn && !(onDevice && m_world->getDeviceBackend()->drag(*this, com, v, w, dragF, dragT, uMean))) {
+        computeDrag(pose, patch, com, v, w, rho, time, dragF, dragT, uMean, predicted);
+    }
+    if (!predicted) m_lastMeanWaterVelocity = uMean;
+    if (evaluationSubstep) {
+        btHydrostaticsSnapshot exact;
+        exact.hydrostatics = h;
+        exact.com = com;
+        exact.rotation = pose.linear();
+        exact.dragForce = dragF;
+        exact.dragTorque = dragT;
+        exact.linearVelocity = v;
+        exact.angularVelocity = w;
+        recordHydrostatics(substep, exact, meff, dt);
+    }
+
+    // Drag stability (design.md 2.6): scale the drag impulse (J, L) by s so it can never add relative
+    // kinetic energy nor reverse the relative motion. In the mass metric ⟨x,y⟩ = m_eff x_v·y_v + x_ω·I y_ω,
+    // with a = −⟨Δ,V⟩/|V|² the explicit fraction removed, s = min(1/(1+a), a|V|²/|Δ|²): 1/(1+a) is the exact
+    // solution v' = v/(1 + k|v|dt) of quadratic drag along a fixed direction; the second bound keeps
+    // |V'|² ≤ |V|²(1 − s a) when Δ is not parallel to V.
+    double s = 1.0;
+    if (dragOn) {
+        const Eigen::Vector3d J = dragF * dt, L = dragT * dt;
+        const Eigen::Vector3d vr = v - uMean;
+        const btMatrix3x3& basis = m_body->getWorldTransform().getBasis();
+        const Eigen::Vector3d invI = toEigen(m_body->getInvInertiaDiagLocal());
+        Eigen::Matrix3d R;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) R(i, j) = double(basis[i][j]);
+        const Eigen::Vector3d wl = R.transpose() * w, Ll = R.transpose() * L;
+        double rotE = 0, rotD = 0;
+        for (int k = 0; k < 3; ++k) {
+            if (invI[k] > 0) rotE += wl[k] * wl[k] / invI[k];
+            rotD += invI[k] * Ll[k] * Ll[k];
+        }
+        const double V2 = meff * vr.squaredNorm() + rotE;
+        const double D2 = J.squaredNorm() / meff + rotD;
+        const double a = V2 > 0 ? -(J.dot(vr) + L.dot(w)) / V2 : 0.0;
+        if (a > 0 && D2 > 0) s = std::min(1.0 / (1.0 + a), a * V2 / D2);
+    }
+    dragF *= s;
+    dragT *= s;
+
+    // Priming: the body's velocity is meant as the velocity after every kick at its current pose, but in
+    // the first substep after creation or wake-up Bullet applied gravity (and integrated) with no buoyancy
+    // kick for the starting pose. Give that missed hydrostatic kick once (evaluated at the current pose),
+    // else a neutrally buoyant body keeps the −g·dt it got and drifts (design.md 3, symplectic Euler).
+    const double prime = m_needsPrime ? 2.0 : 1.0;
+    const Eigen::Vector3d linearImpulse =
+        (m / meff) * ((prime * (h.force - ma * gravityAcc) + dragF) * dt);
+    const Eigen::Vector3d angularImpulse = (prime * h.torque + dragT) * dt;
+
+    m_result.submergedVolume = h.submerged_volume;
+    m_result.centreOfBuoyancy = toBullet(h.centre_of_buoyancy);
+    m_result.buoyancyForce = toBullet(h.force);
+    m_result.buoyancyTorque = toBullet(h.torque);
+    m_result.dragForce = toBullet(dragF);
+    m_result.dragTorque = toBullet(dragT);
+    m_result.wettedArea = h.wetted_area;
+    m_result.waterlineArea = h.waterline_area;
+    m_result.addedMass = ma;
+    m_result.time = time;
+    m_result.predicted = predicted;
+    // Never write NaN/Inf into a body (design.md 3): checked after rounding to btScalar (a finite double
+    // can overflow a float) and on the velocities the impulses would give.
+    const btVector3 J = toBullet(linearImpulse), L = toBullet(angularImpulse);
+    const btVector3 v1 = m_body->getLinearVelocity() + J * m_body->getInvMass() * m_body->getLinearFactor();
+    const btVector3 w1 = m_body->getAngularVelocity() + m_body->getInvInertiaTensorWorld() * L * m_body->getAngularFactor();
+    if (!linearImpulse.allFinite() || !angularImpulse.allFinite() || !toEigen(v1).allFinite() ||
+        !toEigen(w1).allFinite()) {
+        ++m_rejected;
+        m_history.clear();
+        return;
+    }
+    // Sleeping (see m_baseLinearSleep): at rest when the COM really moved less than the body's threshold over
+    // this substep and it turns slower than its angular threshold; Bullet then counts down to sleep as usual.
+    const bool atRest = m_hasLastCom && (com - m_lastCom).norm() < m_baseLinearSleep * dt &&
+                        toEigen(m_body->getAngularVelocity()).norm() < m_baseAngularSleep;
+    m_lastCom = com;
+    m_hasLastCom = true;
+    const btScalar open = atRest ? btScalar(1e6) : btScalar(0);
+    m_body->setSleepingThresholds(open, open);
+    m_body->applyCentralImpulse(J);
+    m_body->applyTorqueImpulse(L);
+    m_result.applied = true;
+    m_needsPrime = false;
+    BT_BUOYANCY_CHECK_BODY(*m_body);
+}
+
+double btBuoyancyAction::reuseLength(double waterlineArea) const {
+    // ℓ = V / A_waterline: the draft change that moves the pressure force by ρ g V; a body under water
+    // (A_waterline = 0) is bounded by V^(1/3).
+    const double volume = m_shape->getUnitSolid().volume;
+    const double volume23 = std::cbrt(volume) * std::cbrt(volume);
+    return volume / std::max(waterlineArea, volume23);
+}
+
+double btBuoyancyAction::allowedPoseDeviation(double waterlineArea) const {
+    // A drift δ changes the pressure force by about ρ g A_waterline δ, a fraction δ / ℓ of ρ g V: allow the
+    // tolerance's worth.
+    return m_tolerance * reuseLength(waterlineArea);
+}
+
+double btBuoyancyAction::allowedVelocityDeviation(double waterlineArea, double relativeSpeed) const {
+    // The velocity scale of ℓ: sqrt(g ℓ) (the speed of a body falling through its draft); drag changes by a
+    // fraction of the tolerance when the velocity leaves the extrapolated one by that. A moving body may also
+    // deviate by kDragReuseFraction of its speed through the water: quadratic drag then changes by twice that
+    // fraction of itself (linear damping and skin friction by that fraction), 1 %, below the error the default drag
+    // clusters accept (0.35–4.3 % of the drag force against every fine sample, docs/benchmarks drag_lod.csv).
+    constexpr double kDragReuseFraction = 0.005;
+    return std::max(m_tolerance * std::sqrt(m_world->getGravity() * reuseLength(waterlineArea)),
+                    kDragReuseFraction * relativeSpeed);
+}
+
+void btBuoyancyAction::correctPose(btHydrostaticsSnapshot& predicted, const Eigen::Vector3d& com,
+                                    const Eigen::Matrix3d& rotation) const {
+    btHydrostaticStiffnessCorrection(predicted, com, rotation, m_world->getFluidDensity() * m_world->getGravity());
+}
+bool btBuoyancyAction::predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose,
+                                           const Eigen::Vector3d& com, double bodyLow, double bodyHigh,
+                                           double waterLow, double waterHigh,
+                                           btHydrostaticsSnapshot& predicted) const {
+    const int interval = m_interval;
+    if (m_reuseCooldown > 0 || !m_history.canPredict(substep, m_world->getTime(), interval)) return false;
+    predicted = m_history.extrapolate(substep, interval);
+    // A body about to go entirely under water or out of it: the submerged volume saturates there (a kink in time
+    // that no polynomial follows; measured: a boat overrun by a crest was predicted 0.12 % of ρ g V off). While the
+    // body straddles the surface, two more intervals at the last interval's rate of volume change must keep it
+    // within the tolerance of both ends.
+    const double volume = m_shape->getUnitSolid().volume, v0 = m_history.volume(0, interval);
+    if (predicted.hydrostatics.waterline_area > 0) {
+        const double reach = 2.0 * std::abs(v0 - m_history.volume(1, interval));
+        if (!(v0 + reach <= (1.0 - m_tolerance) * volume && v0 - reach >= m_tolerance * volume)) return false;
+    } else if (v0 > 0.5 * volume ? !(bodyHigh < waterLow) : !(bodyLow > waterHigh)) {
+        // Entirely under water (or out of it) at the last evaluation, and now within reach of the surface: the body
+        // may be surfacing (or landing), which no extrapolation of the records sees. Measured: a boat thrown clear of
+        // the swell was predicted dry for 6 substeps while it plunged back in, 0.35 % of ρ g V off at the end.
+        return false;
+    }
+    // Pose check: a body moved by a contact, a teleport or an impulse leaves the extrapolated pose. With the
+    // waterplane's moments the prediction follows the actual height and attitude to first order (correctPose), and
+    // what is left is a horizontal drift over sloped water and the second-order terms; without them, the drift.
+    const double radius = m_shape->getBoundsRadius();
+    double deviation;
+    if (predicted.hydrostatics.waterplane.valid)
+        deviation = btHydrostaticsHistory::correctedPoseDeviation(com, pose.linear(), predicted, radius,
+                                                                  m_lastWaterSlope);
+    else
+        deviation = btHydrostaticsHistory::poseDeviation(com, pose.linear(), predicted, radius, m_lastWaterSlope);
+    correctPose(predicted, com, pose.linear());
+    return deviation <= allowedPoseDeviation(predicted.hydrostatics.waterline_area) &&
+           predicted.hydrostatics.force.allFinite() && predicted.hydrostatics.torque.allFinite() &&
+           predicted.dragForce.allFinite() && predicted.dragTorque.allFinite();
+}
+
+void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrostaticsSnapshot& exact,
+                                          double effectiveMass, double dt) {
+    const int interval = m_interval;
+    const buoyancy::HydrostaticsResult& h = exact.hydrostatics;
+    const double scale = m_world->getFluidDensity() * m_world->getGravity() * m_shape->getUnitSolid().volume;
+    const double diameter = 2.0 * m_shape->getBoundsRadius();
+    // Check the predictor against this exact evaluation (one interval past the newest record: a little further than
+    // any substep it predicted). A miss makes the body evaluate exactly until two checks in a row pass (one pass after a
+    // miss was often luck: in a fleet of 200 boats in the scaling sea the worst predicted substep fell from 0.095 % to
+    // 0.054 % of ρ g V with this and the next rule, at the same share of substeps predicted). Two misses in a row, or
+    // three in the last four checks: the body's motion is too fast for its interval (the extrapolation's error grows
+    // like the interval⁴), which is halved
+    // (down to 2, and only to a divisor of the resolved interval); it is doubled back after 16 passes in a row whose
+    // mean error × 2⁴ stays within half the tolerance, or after 64 (a miss in the first four checks after a
+    // doubling halves it again at once). The records are kept across the switches (btHydrostaticsHistory keeps
+    // seven, and interpolates the two a halving needs), so predictions go on without a warm-up. Measured: an
+    // undamped sphere bobbing at ω = 4.4 rad/s missed half its checks at 1/30 s and lost 0.5 % of its amplitude a
+    // minute through the exact intervals the misses forced; with the halving 0.3 %. A single miss (a wave
+    // overrunning a deck) keeps the interval.
+    const double time = m_world->getTime();
+    bool halve = false;
+    if (m_history.canCheck(substep, time, interval)) {
+        btHydrostaticsSnapshot p = m_history.extrapolate(substep, interval);
+        correctPose(p, exact.com, exact.rotation);  // as a prediction at this pose would be
+        // The predictions reach a = (K − 1)/K of the interval, where the cubic's remainder a(a+1)(a+2)(a+3)/24 is
+        // that fraction of its value at a = 1 (0.76 at K = 8, 0.56 at K = 4): the error of the furthest prediction.
+        const double a = double(interval - 1) / double(interval);
+        const double reach = a * (a + 1.0) * (a + 2.0) * (a + 3.0) / 24.0;
+        const double error = reach * std::max((p.hydrostatics.force - h.force).norm() / scale,
+                                              (p.hydrostatics.torque - h.torque).norm() / (scale * diameter));
+        const bool miss = !(error <= m_tolerance);
+        const int probation = m_probation;
+        if (m_probation > 0) --m_probation;
+        m_checkMisses = std::uint8_t((m_checkMisses << 1) | (miss ? 1 : 0));
+        const int resolved = btBuoyancyResolveInterval(m_settings, dt);
+        if (miss) {
+            m_checkPasses = 0;
+            m_passingErrorSum = 0;
+            const int bits = (m_checkMisses & 1) + ((m_checkMisses >> 1) & 1) + ((m_checkMisses >> 2) & 1) +
+                             ((m_checkMisses >> 3) & 1);
+            const bool twoInARow = (m_checkMisses & 3) == 3;
+            if ((bits >= 3 || twoInARow || probation > 0) && interval % 2 == 0 && interval / 2 >= 2) {
+                m_adaptedInterval = interval / 2;  // this substep is on the halved interval's grid too
+                m_checkMisses = 0;
+                m_probation = 0;
+                halve = true;  // the records' spacing, once this evaluation is pushed
+            } else {
+                m_reuseCooldown = 2;  // predictions resume after two passing checks in a row
+            }
+        } else {
+            if (m_reuseCooldown > 0) --m_reuseCooldown;
+            m_passingErrorSum += error;
+            // Doubled, the error would grow ≈ 2⁴ times: doubled after 16 passes when the mean error so grown stays
+            // within half the tolerance, else after 64.
+            ++m_checkPasses;
+            const bool smooth =
+                m_checkPasses >= 16 && 16.0 * m_passingErrorSum / double(m_checkPasses) <= 0.5 * m_tolerance;
+            if (interval < resolved && (smooth || m_checkPasses >= 64) &&
+                resolved % (2 * interval) == 0 &&
+                (substep + m_phase) % std::uint64_t(2 * interval) == 0) {
+                m_adaptedInterval = 2 * interval;  // on the doubled interval's grid: the next record is 2K away
+                m_checkPasses = 0;
+                m_passingErrorSum = 0;
+                m_checkMisses = 0;  // (the records kept include every other one at the doubled spacing)
+                m_probation = 4;    // a miss in the next four checks halves it again at once
+            }
+        }
+    } else if (m_reuseCooldown > 0) {
+        --m_reuseCooldown;
+    }
+    // Stiffness check: extrapolating over an interval is only accurate while the heave is slow against it
+    // (ω K dt ≤ 0.3 with ω² = ρ g A_waterline / m_eff, design.md 2.7); a light, stiff body evaluates exactly.
+    const double omega2 = m_world->getFluidDensity() * m_world->getGravity() * h.waterline_area / effectiveMass;
+    const double step = double(interval) * dt;
+    if (!(omega2 * step * step <= 0.09)) m_reuseCooldown = std::max(m_reuseCooldown, 1);
+    const bool finite = h.force.allFinite() && h.torque.allFinite() && std::isfinite(h.submerged_volume) &&
+                        exact.dragForce.allFinite() && exact.dragTorque.allFinite();
+    if (finite) {
+        m_history.push(substep, time, exact);
+        if (halve) m_history.halveSpacing(interval);
+    } else {
+        m_history.clear();
+    }
+}
+
+void btBuoyancyAction::debugDraw(btIDebugDraw* debugDrawer) {
+    if (!debugDrawer || !m_result.applied) return;
+    const btScalar mg = btScalar(m_world->getGravity()) / m_body->getInvMass();
+    if (!(mg > 0)) return;
+    const btVector3& c = m_result.centreOfBuoyancy;
+    debugDrawer->drawLine(c, c + m_result.buoyancyForce / mg, btVector3(0, 0.4, 1));
+    const btVector3 com = m_body->getCenterOfMassPosition();
+    debugDrawer->drawLine(com, com + m_result.dragForce / mg, btVector3(1, 0.3, 0));
+}

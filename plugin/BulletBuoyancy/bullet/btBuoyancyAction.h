@@ -1,0 +1,201 @@
+#pragma once
+/// @file btBuoyancyAction.h
+/// The Bullet coupling: one btActionInterface per floating body (in the style of btRaycastVehicle).
+/// Each substep, after Bullet has integrated the transforms, it evaluates the pressure force and torque
+/// (design.md 2.3), drag and skin friction (2.6) and added mass (2.7) at the body's new pose and applies
+/// them as impulses (F·dt, τ·dt), so any maxSubSteps gives the same motion (design.md 3).
+///
+/// Usage:  btBuoyancyWorld water(&surface);  btBuoyancyAction action(body, shape, &water);
+///         dynamicsWorld->addAction(&action);   // ... remove it before deleting the body.
+/// Removing the action from the world is safe at any time. Deleting the body while its action is still in
+/// the world is a misuse (checked in debug builds: the body must be in the world the action runs in).
+
+#include <BulletBuoyancy/bullet/btBuoyancySettings.h>
+#include <BulletBuoyancy/bullet/btBuoyancyShape.h>
+#include <BulletBuoyancy/bullet/btHydrostaticsHistory.h>
+#include <BulletBuoyancy/integrals/DragClusters.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/integrals/WaterPatch.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
+
+#include <BulletDynamics/Dynamics/btActionInterface.h>
+#include <LinearMath/btTransform.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+class btRigidBody;
+class btBuoyancyWorld;
+class btBuoyantBody;
+class btBuoyancyDeformable;
+
+/// What the last substep computed for one body (world frame). Forces are the ones applied (after the drag
+/// stability limit); torques are about the body's centre of mass.
+struct btBuoyancyResult {
+    double submergedVolume = 0;                 ///< V_sub, m³
+    btVector3 centreOfBuoyancy = btVector3(0, 0, 0); ///< m, world (meaningless when submergedVolume is 0)
+    btVector3 buoyancyForce = btVector3(0, 0, 0);    ///< pressure force, N
+    btVector3 buoyancyTorque = btVector3(0, 0, 0);   ///< pressure torque about the COM, N·m
+    btVector3 dragForce = btVector3(0, 0, 0);        ///< pressure drag + skin friction, N
+    btVector3 dragTorque = btVector3(0, 0, 0);       ///< about the COM, N·m
+    double wettedArea = 0;                      ///< m²
+    double waterlineArea = 0;                   ///< m²
+    double addedMass = 0;                       ///< m_a applied this substep, kg
+    double time = 0;                            ///< water time of the evaluation, s
+    bool applied = false;                       ///< false when nothing was applied (dry, asleep, rejected)
+    /// The hydrostatic fields were predicted from earlier exact evaluations, not evaluated at this substep
+    /// (btBuoyancySettings::hydrostaticsInterval > 1; btHydrostaticsHistory).
+    bool predicted = false;
+};
+
+/// Buoyancy of one rigid body in the water of a btBuoyancyWorld.
+class btBuoyancyAction : public btActionInterface {
+public:
+    /// Any rigid body whose collision/COM frame holds the mesh at `meshInCom` (identity when the mesh's
+    /// origin is the COM and its axes the principal axes).
+    /// @param body      the body (not owned; must outlive the action's presence in a world)
+    /// @param shape     shared buoyancy data of the body's mesh
+    /// @param world     the shared context (not owned, outlives the action); the action registers with it
+    /// @param settings  drag/added-mass settings (validated; the method and texture come from `shape`)
+    /// @throws std::invalid_argument naming a bad argument or setting
+    btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBuoyancyShape> shape, btBuoyancyWorld* world,
+                     const btBuoyancySettings& settings = btBuoyancySettings(),
+                     const btTransform& meshInCom = btTransform::getIdentity());
+    /// A body made by btBuoyantBody: its mesh frame follows updateMassProperties automatically.
+    btBuoyancyAction(btBuoyantBody& body, btBuoyancyWorld* world, const btBuoyancySettings& settings = btBuoyancySettings());
+    ~btBuoyancyAction() override;
+    btBuoyancyAction(const btBuoyancyAction&) = delete;
+    btBuoyancyAction& operator=(const btBuoyancyAction&) = delete;
+
+    /// Called by Bullet once per substep after integrateTransforms; applies impulses for `deltaTimeStep`.
+    void updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) override;
+    /// Draws the buoyancy force at the centre of buoyancy and the drag force at the COM (1 m per m·g).
+    void debugDraw(btIDebugDraw* debugDrawer) override;
+
+    /// Result of the last substep.
+    const btBuoyancyResult& getLastResult() const { return m_result; }
+    /// The body.
+    btRigidBody* getRigidBody() const { return m_body; }
+    /// The shared buoyancy data.
+    const std::shared_ptr<const btBuoyancyShape>& getShape() const { return m_shape; }
+    /// Settings in use.
+    const btBuoyancySettings& getSettings() const { return m_settings; }
+    /// Replace the settings. @throws std::invalid_argument (settings unchanged)
+    void setSettings(const btBuoyancySettings& settings);
+    /// The mesh frame in the body's COM frame (for bodies not made by btBuoyantBody).
+    void setMeshInComFrame(const btTransform& meshInCom) { m_meshInCom = meshInCom; }
+    /// The mesh frame in the body's COM frame currently used.
+    btTransform getMeshInComFrame() const;
+    /// The drag samples in use: the shape's fine drag samples merged into at most settings.dragClusters
+    /// clusters (design.md 2.5; shared between the actions of one shape at one setting).
+    const buoyancy::DragClusters& getDragClusters() const { return *m_drag; }
+    /// Number of substeps whose impulses were rejected as non-finite (should stay 0).
+    std::uint64_t getRejectedCount() const { return m_rejected; }
+
+    ///@name Deformable bodies and device backends
+    /// Deformable body (paper Fig. 17): use `deformable`'s samples, re-baked from animated vertices
+    /// (btBuoyancyDeformable::setVertices), instead of the shape's; nullptr: the shape's again.
+    /// @throws std::invalid_argument when its sample count differs from the shape's
+    void setDeformable(std::shared_ptr<btBuoyancyDeformable> deformable);
+    /// The deformable samples in use, or nullptr.
+    const std::shared_ptr<btBuoyancyDeformable>& getDeformable() const { return m_deformable; }
+    /// The hydrostatic samples in use: the deformable's, or the shape's.
+    const buoyancy::SurfaceSamples& getSamplesInUse() const;
+    /// The velocities drag is evaluated at, given this substep's hydrostatics `h` (see updateAction): the body's
+    /// velocity plus this substep's hydrostatic kick (with added mass) plus the gravity kick of the next one.
+    /// Public so a batching backend evaluates every body's drag at exactly the velocity the action would.
+    /// @param dt  substep, s   @param[out] v  m/s   @param[out] w  rad/s
+    void dragEvaluationVelocity(const buoyancy::HydrostaticsResult& h, double dt, Eigen::Vector3d& v,
+                                Eigen::Vector3d& w) const;
+    ///@}
+
+private:
+    void computeDrag(const Eigen::Isometry3d& pose, const buoyancy::WaterPatch* patch, const Eigen::Vector3d& com,
+                     const Eigen::Vector3d& v, const Eigen::Vector3d& w, double density, double time,
+                     Eigen::Vector3d& force, Eigen::Vector3d& torque, Eigen::Vector3d& meanWaterVelocity,
+                     bool reuseWater = false);
+    /// Temporal level of detail: fill `predicted` with this substep's extrapolated evaluation and return true,
+    /// or return false when this substep must be evaluated exactly (btBuoyancySettings::hydrostaticsInterval).
+    /// bodyLow / bodyHigh: the lowest and highest world height of the body's bounding sphere, waterLow / waterHigh the
+    /// water's bounds over its footprint (btWaterSurface::heightBounds), m.
+    bool predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose, const Eigen::Vector3d& com,
+                             double bodyLow, double bodyHigh, double waterLow, double waterHigh,
+                             btHydrostaticsSnapshot& predicted) const;
+    /// Temporal level of detail: after an exact evaluation at one of the body's evaluation substeps, check the
+    /// predictor against it, then record it.
+    void recordHydrostatics(std::uint64_t substep, const btHydrostaticsSnapshot& exact, double effectiveMass, double dt);
+    /// Temporal level of detail: ℓ = V / max(A_waterline, V^(2/3)), the draft change that moves the pressure force by
+    /// ρ g V, m; the pose and velocity checks scale with it.
+    double reuseLength(double waterlineArea) const;
+    /// Temporal level of detail: the velocity deviation (btHydrostaticsHistory::velocityDeviation) up to which the
+    /// extrapolated drag is used, m/s. relativeSpeed: |v − u_water| + radius |ω|, m/s.
+    double allowedVelocityDeviation(double waterlineArea, double relativeSpeed) const;
+    /// Temporal level of detail: the pose deviation up to which the extrapolated hydrostatics are used, m.
+    double allowedPoseDeviation(double waterlineArea) const;
+    /// Temporal level of detail: move an extrapolated pressure force, torque and volume from the extrapolated pose to
+    /// the actual one (COM `com`, m; `rotation` body → world): btHydrostaticStiffnessCorrection.
+    void correctPose(btHydrostaticsSnapshot& predicted, const Eigen::Vector3d& com, const Eigen::Matrix3d& rotation) const;
+    /// (Re)select the shared drag clusters for the current settings and size the drag workspace.
+    void selectDragClusters();
+    /// Whole body below the lowest water point of flat water: the closed form from the dry mass properties.
+    buoyancy::HydrostaticsResult submergedClosedForm(const Eigen::Isometry3d& pose, double rho, double g,
+                                                     const Eigen::Vector3d& com) const;
+
+    btRigidBody* m_body;
+    std::shared_ptr<const btBuoyancyShape> m_shape;
+    btBuoyancyWorld* m_world;
+    const btBuoyantBody* m_owner = nullptr;
+    btBuoyancySettings m_settings;
+    btTransform m_meshInCom;
+    btBuoyancyResult m_result;
+    std::uint64_t m_lastSubstep = 0;
+    std::uint64_t m_rejected = 0;
+    std::shared_ptr<btBuoyancyDeformable> m_deformable;  ///< re-baked samples of a deformable body
+    /// True until the first hydrostatic kick after creation or sleep: Bullet has already applied gravity for
+    /// a substep whose buoyancy kick (at the starting pose) was never given; see updateAction.
+    bool m_needsPrime = true;
+    /// @name Temporal level of detail (settings.hydrostaticsInterval)
+    ///@{
+    btHydrostaticsHistory m_history;   ///< the last exact evaluations at this body's evaluation substeps
+    int m_reuseCooldown = 0;           ///< passing checks (or evaluation substeps without one) before predicting again
+    std::uint64_t m_phase = 0;         ///< the body evaluates exactly when (substep + m_phase) % interval == 0
+    int m_interval = 1;                ///< this substep's interval (m_adaptedInterval)
+    /// This body's interval: settings.hydrostaticsInterval resolved, halved after repeated misses of the check
+    /// and doubled back after 64 passes (recordHydrostatics); 0 until the first substep.
+    int m_adaptedInterval = 0;
+    std::uint8_t m_checkMisses = 0;    ///< the last eight checks, one bit per miss (newest lowest)
+    int m_checkPasses = 0;             ///< checks passed in a row at a halved interval
+    double m_passingErrorSum = 0;      ///< the sum of those checks' errors, fraction of ρ g V
+    int m_probation = 0;               ///< checks left in which one miss undoes a doubling
+    double m_tolerance = 1e-4;         ///< this substep's prediction tolerance (btBuoyancyResolveReuseTolerance)
+    /// Slope scale of the water over the body at the last exact evaluation (0 flat, WaterPatch::slopeBound on a
+    /// patch, 1 otherwise): weighs a horizontal drift in the pose check (btHydrostaticsHistory::poseDeviation).
+    double m_lastWaterSlope = 1.0;
+    Eigen::Vector3d m_lastMeanWaterVelocity = Eigen::Vector3d::Zero(); ///< of the last computed drag, m/s
+    ///@}
+    // Workspace sized once (no allocation per substep).
+    buoyancy::SampleWorkspace m_ws;
+    /// Warm-start memory of the water queries on m_ws's points (hydrostatic samples).
+    btWaterQueryCache m_waterCache;
+    /// Drag level of detail (design.md 2.5): clusters of the shape's drag samples, and their world-frame
+    /// workspace (positions, area vectors, vertical half extents, water heights and velocities).
+    std::shared_ptr<const buoyancy::DragClusters> m_drag;
+    std::vector<double> m_dx, m_dy, m_dz, m_dax, m_day, m_daz, m_dhalf, m_dh, m_ux, m_uy, m_uz;
+    btWaterQueryCache m_dragCache;   ///< warm start of the height and velocity queries at the cluster points
+    std::vector<double> m_px, m_py, m_pz, m_pux, m_puy, m_puz; ///< velocity probes: world points and velocities
+    btWaterQueryCache m_probeCache;  ///< warm start of the velocity queries at the probes
+    /// Fewer wave queries (design.md 2.5): the per-body grid of water heights, and its warm start.
+    buoyancy::WaterPatch m_patch;
+    btWaterQueryCache m_patchCache;
+    /// @name Sleeping: Bullet tests the stored velocity, which at rest on the water is +g·dt, not 0 (the kick for
+    /// the next substep comes after integration: symplectic Euler, design.md 3). The action tests the COM's
+    /// real displacement over the substep against the body's own thresholds instead, and opens or closes
+    /// Bullet's thresholds accordingly.
+    ///@{
+    double m_baseLinearSleep = 0;   ///< the body's linear sleeping threshold when the action was made, m/s
+    double m_baseAngularSleep = 0;  ///< the body's angular sleeping threshold when the action was made, rad/s
+    Eigen::Vector3d m_lastCom = Eigen::Vector3d::Zero(); ///< COM after the previous wet substep, m
+    bool m_hasLastCom = false;      ///< m_lastCom is valid (the previous substep was wet and applied)
+    ///@}
+};

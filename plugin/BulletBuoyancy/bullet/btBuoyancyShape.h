@@ -1,0 +1,74 @@
+#pragma once
+/// @file btBuoyancyShape.h
+/// The immutable, shareable buoyancy data of one mesh: the mesh, its surface samples (sampled methods),
+/// the per-face drag samples, and its unit-density dry mass properties. Bodies that use the same mesh at
+/// the same settings share one instance through std::shared_ptr.
+
+#include <BulletBuoyancy/bake/SurfaceSamples.h>
+#include <BulletBuoyancy/bullet/btBuoyancySettings.h>
+#include <BulletBuoyancy/integrals/MassProperties.h>
+#include <BulletBuoyancy/integrals/MeshMomentTree.h>
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+/// Shared per-mesh buoyancy data (immutable once created).
+class btBuoyancyShape {
+public:
+    /// Build the shape: resolve the method (btBuoyancyResolveMethod), choose the UV layout
+    /// (chooseUvLayout) and bake samples for sampled methods, compute unit-density mass properties from
+    /// the same data the buoyancy integrals use (so a body of the fluid's density is exactly neutral).
+    /// @param mesh      closed, outward mesh in its own frame, m (see prepareMesh)
+    /// @param settings  validated here
+    /// @throws std::invalid_argument for bad settings or a mesh enclosing no volume
+    static std::shared_ptr<const btBuoyancyShape> create(buoyancy::TriangleMesh mesh,
+                                                         const btBuoyancySettings& settings = btBuoyancySettings());
+
+    /// The concrete method (never Auto).
+    btBuoyancyMethod getMethod() const { return m_method; }
+    /// The mesh, body (mesh) frame, m.
+    const buoyancy::TriangleMesh& getMesh() const { return m_mesh; }
+    /// Moment tree of the mesh for the exact-mesh method (design.md 2.5; empty for sampled methods).
+    const buoyancy::MeshMomentTree& getMomentTree() const { return m_tree; }
+    /// Hydrostatic samples (empty for ExactMesh).
+    const buoyancy::SurfaceSamples& getSamples() const { return m_samples; }
+    /// Samples used for drag: the hydrostatic samples, or one per triangle (centroid, area vector) for ExactMesh.
+    const buoyancy::SurfaceSamples& getDragSamples() const {
+        return m_method == btBuoyancyMethod::ExactMesh ? m_faceSamples : m_samples;
+    }
+    /// Solid mass properties at density 1 kg/m³ (mass = volume), mesh frame.
+    const buoyancy::MassProperties& getUnitSolid() const { return m_unitSolid; }
+    /// Shell mass properties at density 1 kg/m³ and thickness 1 m (mass = area), mesh frame.
+    const buoyancy::MassProperties& getUnitShell() const { return m_unitShell; }
+    /// Enclosed volume as the buoyancy integrals see it, m³.
+    double getVolume() const { return m_unitSolid.volume; }
+    /// Centre of the mesh's bounding box, mesh frame, m.
+    const Eigen::Vector3d& getBoundsCentre() const { return m_boundsCentre; }
+    /// Radius of the bounding sphere about getBoundsCentre(), m.
+    double getBoundsRadius() const { return m_boundsRadius; }
+    /// True when the samples were baked through an atlas the library generated (the model's UVs were missing or
+    /// unusable); false for the model's own UVs and for ExactMesh (no texture).
+    bool usesGeneratedUvs() const { return m_uvGenerated; }
+    /// Why the model's UVs were not used (empty unless usesGeneratedUvs()), e.g. "overlapping UVs (120 triangles)".
+    const std::vector<std::string>& getUvProblems() const { return m_uvProblems; }
+    /// Texture size the samples were baked at (0 for ExactMesh).
+    int getTextureSize() const { return m_samples.texture_size; }
+
+private:
+    btBuoyancyShape() = default;
+
+    btBuoyancyMethod m_method = btBuoyancyMethod::ExactMesh;
+    buoyancy::TriangleMesh m_mesh;
+    buoyancy::SurfaceSamples m_samples;
+    buoyancy::MeshMomentTree m_tree;
+    buoyancy::SurfaceSamples m_faceSamples;
+    buoyancy::MassProperties m_unitSolid;
+    buoyancy::MassProperties m_unitShell;
+    Eigen::Vector3d m_boundsCentre = Eigen::Vector3d::Zero();
+    double m_boundsRadius = 0;
+    bool m_uvGenerated = false;
+    std::vector<std::string> m_uvProblems;
+};

@@ -1,0 +1,96 @@
+#pragma once
+/// @file btBuoyancyWorld.h
+/// The per-world buoyancy context shared by every btBuoyancyAction of one btDynamicsWorld: the water
+/// surface (injected, not owned), the fluid, gravity and the water's clock. Actions register with it, so a
+/// batching backend (threads, OpenCL) can compute every body when the first action of a substep is called
+/// and let the others read their result.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+class btWaterSurface;
+class btBuoyancyAction;
+class btBuoyancyDeviceBackend;
+
+/// Where the sampled bodies of a world are computed (docs/opencl.md).
+enum class btBuoyancyCompute {
+    Cpu,    ///< each action on the CPU (default)
+    OpenCl, ///< every body of the world in one batched launch set per substep on an OpenCL device
+};
+
+/// Shared buoyancy context of one dynamics world.
+class btBuoyancyWorld {
+public:
+    /// @param water         the water surface; not owned, must outlive the context (nullptr: no water)
+    /// @param fluidDensity  ρ_w, kg/m³ (fresh water 1000, sea water 1025), > 0
+    /// @param gravity       magnitude g of the world's gravity (0, −g, 0), m/s² (9.81), ≥ 0. The water is a
+    ///                      height field in y, so gravity must point down y.
+    /// @throws std::invalid_argument naming a bad parameter
+    explicit btBuoyancyWorld(const btWaterSurface* water, double fluidDensity = 1000.0, double gravity = 9.81);
+    ~btBuoyancyWorld();
+    btBuoyancyWorld(const btBuoyancyWorld&) = delete;
+    btBuoyancyWorld& operator=(const btBuoyancyWorld&) = delete;
+
+    /// The water surface (may be nullptr: no buoyancy).
+    const btWaterSurface* getWater() const { return m_water; }
+    /// Replace the water surface (not owned).
+    void setWater(const btWaterSurface* water) { m_water = water; }
+    /// ρ_w, kg/m³.
+    double getFluidDensity() const { return m_fluidDensity; }
+    /// @throws std::invalid_argument for a non-positive or non-finite density
+    void setFluidDensity(double density);
+    /// g, m/s².
+    double getGravity() const { return m_gravity; }
+    /// @throws std::invalid_argument for a negative or non-finite value
+    void setGravity(double g);
+
+    /// Time of the water surface at the end of the current substep, s. Advanced by dt once per substep by
+    /// the actions themselves (see beginSubstepIfNew), so no callback or action order is needed.
+    double getTime() const { return m_time; }
+    /// Set the water's clock, s (e.g. to start a wave scene at t0).
+    void setTime(double t) { m_time = t; }
+    /// Number of substeps seen so far.
+    std::uint64_t getSubstep() const { return m_substep; }
+
+    /// Registered actions (every btBuoyancyAction built with this context, in or out of a world).
+    const std::vector<btBuoyancyAction*>& getActions() const { return m_actions; }
+
+    /// Called by each action at the start of its updateAction. A new substep has begun when the calling
+    /// action was already called in the current one (Bullet calls every action once per substep): the
+    /// clock advances by dt, and a batching backend would compute every registered body here.
+    /// @param lastSeen  the action's own record of the substep it last ran in (updated)
+    void beginSubstepIfNew(std::uint64_t& lastSeen, double dt);
+
+    ///@name Compute backend (docs/opencl.md)
+    /// Select where the sampled bodies of this world are computed. OpenCl: one batched launch set per substep on
+    /// the first OpenCL GPU, else the first device (env BULLET_BUOYANCY_OPENCL_DEVICE=n picks device n), double
+    /// precision when the device has cl_khr_fp64. When the library was built without OpenCL, or no platform or
+    /// device works, the CPU path stays selected and `message` says why: never an exception for that.
+    /// @param message  optional: the reason of a failure, or the device and precision chosen
+    /// @return true when `compute` is now in use
+    bool setCompute(btBuoyancyCompute compute, std::string* message = nullptr);
+    /// The backend in use.
+    btBuoyancyCompute getCompute() const { return m_device ? btBuoyancyCompute::OpenCl : btBuoyancyCompute::Cpu; }
+    /// Install a backend built by hand (e.g. btOpenClBuoyancyBackend::create with options); owned. nullptr: CPU.
+    void setDeviceBackend(std::unique_ptr<btBuoyancyDeviceBackend> backend);
+    /// The installed backend, or nullptr (CPU).
+    btBuoyancyDeviceBackend* getDeviceBackend() const { return m_device.get(); }
+    ///@}
+
+    /// Internal: actions register and unregister themselves. Returns how many actions registered before this one
+    /// (its turn among the bodies for the temporal level of detail; deterministic for a given scene).
+    std::uint64_t registerAction(btBuoyancyAction* action);
+    void unregisterAction(btBuoyancyAction* action);
+
+private:
+    const btWaterSurface* m_water;
+    double m_fluidDensity;
+    double m_gravity;
+    double m_time = 0;
+    std::uint64_t m_substep = 0;
+    std::vector<btBuoyancyAction*> m_actions;
+    std::uint64_t m_registrations = 0;  ///< actions registered so far (never decreases)
+    std::unique_ptr<btBuoyancyDeviceBackend> m_device;  ///< batching backend, nullptr = CPU
+};

@@ -1,0 +1,105 @@
+#include <BulletBuoyancy/bullet/btFloodingAction.h>
+
+#include <BulletBuoyancy/bullet/btBulletConvert.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/graph/WaterMassProperties.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+#include <LinearMath/btIDebugDraw.h>
+
+#include <cmath>
+#include <stdexcept>
+
+btFloodingAction::btFloodingAction(btBuoyantBody& body, btBuoyancyWorld* world, buoyancy::WaterGraph graph,
+                                   buoyancy::PermeableSamples holes)
+    : m_body(&body), m_world(world), m_state(std::move(graph)) {
+    if (!m_world) throw std::invalid_argument("world: null");
+    if (!(body.getMass() > 0)) throw std::invalid_argument("body: a fixed body cannot hold water");
+    m_dry = body.getMassProperties();
+    setPermeableSamples(std::move(holes));
+    m_state.setPose(buoyancy::toEigen(body.getMeshWorldTransform()));
+    updateBodyMassProperties();
+}
+
+void btFloodingAction::setPermeableSamples(buoyancy::PermeableSamples holes) {
+    const std::size_t n = holes.size();
+    if (holes.py.size() != n || holes.pz.size() != n || holes.openArea.size() != n || holes.node.size() != n)
+        throw std::invalid_argument("holes: arrays of different sizes");
+    for (std::size_t i = 0; i < n; ++i) {
+        if (holes.node[i] < 0 || std::size_t(holes.node[i]) >= m_state.size())
+            throw std::invalid_argument("holes: sample " + std::to_string(i) + " maps to no node");
+        if (!std::isfinite(holes.openArea[i]) || holes.openArea[i] < 0)
+            throw std::invalid_argument("holes: sample " + std::to_string(i) + " has a bad open area");
+    }
+    m_holes = std::move(holes);
+    m_wx.resize(n);
+    m_wy.resize(n);
+    m_wz.resize(n);
+    m_f.resize(n);
+    m_scratch.resize(m_state.size());
+}
+
+void btFloodingAction::setDryMassProperties(const buoyancy::MassProperties& dry) {
+    if (!(dry.mass > 0) || !std::isfinite(dry.mass) || !dry.centre.allFinite() || !dry.inertia.allFinite())
+        throw std::invalid_argument("dry mass properties: mass must be > 0 and everything finite");
+    m_dry = dry;
+    m_dirty = true;
+}
+
+void btFloodingAction::updateBodyMassProperties() {
+    const double rho = m_world->getFluidDensity();
+    const buoyancy::MassProperties total =
+        buoyancy::composeMassProperties(m_dry, buoyancy::waterMassProperties(m_state, rho));
+    const buoyancy::MassProperties& cur = m_body->getMassProperties();
+    // Skip the update (and its eigen-decomposition) when nothing measurable changed.
+    const double scale = std::max(cur.inertia.norm(), 1e-30);
+    if (!m_dirty && std::abs(total.mass - cur.mass) <= 1e-13 * cur.mass &&
+        (total.centre - cur.centre).norm() <= 1e-12 && (total.inertia - cur.inertia).norm() <= 1e-12 * scale)
+        return;
+    if (!(total.mass > 0) || !total.centre.allFinite() || !total.inertia.allFinite()) return;  // never NaN
+    m_body->updateMassProperties(total.mass, total.centre, total.inertia);
+    m_dirty = false;
+}
+
+void btFloodingAction::updateAction(btCollisionWorld*, btScalar deltaTimeStep) {
+    const double dt = double(deltaTimeStep);
+    if (!(dt > 0) || !std::isfinite(dt)) return;
+    btRigidBody* rb = m_body->getRigidBody();
+    if (!rb->getBroadphaseHandle() || rb->getInvMass() == btScalar(0)) return;
+    const Eigen::Isometry3d pose = buoyancy::toEigen(m_body->getMeshWorldTransform());
+    if (!pose.matrix().allFinite()) return;
+    m_state.setPose(pose);
+    const double before = m_state.totalWater();
+
+    const btWaterSurface* water = m_world->getWater();
+    const double g = m_world->getGravity();
+    const std::size_t n = m_holes.size();
+    if (water && n > 0) {
+        for (std::size_t i = 0; i < n; ++i) {
+            const Eigen::Vector3d p = pose * Eigen::Vector3d(m_holes.px[i], m_holes.py[i], m_holes.pz[i]);
+            m_wx[i] = p.x();
+            m_wy[i] = p.y();
+            m_wz[i] = p.z();
+        }
+        water->heights(m_wx.data(), m_wz.data(), n, m_world->getTime(), m_f.data());
+        buoyancy::applyIngress(m_state, m_holes, m_wy.data(), m_f.data(), dt, g, m_scratch, m_world->getFluidDensity());
+    }
+    m_state.flow(dt, m_world->getFluidDensity(), g);
+    if (m_state.totalWater() != before) rb->activate();
+    updateBodyMassProperties();
+}
+
+void btFloodingAction::debugDraw(btIDebugDraw* debugDrawer) {
+    if (!debugDrawer) return;
+    const btTransform t = m_body->getMeshWorldTransform();
+    for (std::size_t i = 0; i < m_state.size(); ++i) {
+        if (!(m_state.water(int(i)) > 0)) continue;
+        const btVector3 c = t * buoyancy::toBullet(m_state.waterCentroid(int(i)));
+        const btScalar s = 0.05;
+        debugDrawer->drawLine(c - btVector3(s, 0, 0), c + btVector3(s, 0, 0), btVector3(0, 0.3, 1));
+        debugDrawer->drawLine(c - btVector3(0, s, 0), c + btVector3(0, s, 0), btVector3(0, 0.3, 1));
+        debugDrawer->drawLine(c - btVector3(0, 0, s), c + btVector3(0, 0, s), btVector3(0, 0.3, 1));
+    }
+}

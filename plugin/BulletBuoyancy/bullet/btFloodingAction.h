@@ -1,0 +1,82 @@
+#pragma once
+/// @file btFloodingAction.h
+/// Water inside a body, coupled to Bullet (paper section 4, design.md 3–4): a companion action to the
+/// body's btBuoyancyAction. Each substep it places the water graph at the body's pose, lets water in or
+/// out through the permeable samples, moves it inside (Algorithm 1 + eq. 14), and pushes the composed
+/// mass, centre of mass and inertia (dry body + water, eqs. 15–17 with the free surface) into the body
+/// through btBuoyantBody::updateMassProperties (the mesh does not jump; the velocity field is kept).
+///
+/// A sealed body simply has no flooding action: it pays nothing.
+///
+/// Usage:  btBuoyancyAction buoyancy(body, &water);    world->addAction(&buoyancy);
+///         btFloodingAction flooding(body, &water, graph, holes);  world->addAction(&flooding);  // after it
+/// Gravity: Bullet applies gravity once per stepSimulation call with the mass current at that call, so a
+/// mass change takes effect on gravity from the next call (a lag of at most one frame, design.md 3).
+
+#include <BulletBuoyancy/graph/WaterGraph.h>
+#include <BulletBuoyancy/graph/WaterGraphState.h>
+#include <BulletBuoyancy/graph/PermeabilityMap.h>
+#include <BulletBuoyancy/graph/WaterIngress.h>
+#include <BulletBuoyancy/integrals/MassProperties.h>
+
+#include <BulletDynamics/Dynamics/btActionInterface.h>
+
+#include <vector>
+
+class btBuoyantBody;
+class btBuoyancyWorld;
+
+/// The water graph of one buoyant body, as a Bullet action.
+class btFloodingAction : public btActionInterface {
+public:
+    /// @param body   the body (not owned; remove this action before destroying it). Its current mass
+    ///               properties are taken as the dry body's.
+    /// @param world  the buoyancy context (water surface, ρ_w, g, clock; not owned)
+    /// @param graph  the water graph, body (mesh) frame (validated here)
+    /// @param holes  the permeable samples (permeableSamplesFromRegions / FromValues); empty: stays dry
+    ///               unless water is set from code
+    /// @throws std::invalid_argument for a bad graph, a fixed body or a null world (nothing is changed)
+    btFloodingAction(btBuoyantBody& body, btBuoyancyWorld* world, buoyancy::WaterGraph graph,
+                     buoyancy::PermeableSamples holes = buoyancy::PermeableSamples());
+    ~btFloodingAction() override = default;
+    btFloodingAction(const btFloodingAction&) = delete;
+    btFloodingAction& operator=(const btFloodingAction&) = delete;
+
+    /// Called by Bullet once per substep (after the buoyancy action when added after it).
+    void updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) override;
+    /// Draws each node with water as a cross at its water centre.
+    void debugDraw(btIDebugDraw* debugDrawer) override;
+
+    /// The water state (volumes, levels, ledger). Changing water through it takes effect next substep.
+    buoyancy::WaterGraphState& getState() { return m_state; }
+    /// The water state.
+    const buoyancy::WaterGraphState& getState() const { return m_state; }
+    /// Σ water in the body, m³.
+    double getWaterVolume() const { return m_state.totalWater(); }
+    /// Replace the permeable samples at run time (e.g. a hit opens a hole). Nodes out of range are refused.
+    /// @throws std::invalid_argument
+    void setPermeableSamples(buoyancy::PermeableSamples holes);
+    /// Replace the permeable samples by those of a per-sample map (e.g. after PermeabilityMap::paintSphere for
+    /// a hit). The map must belong to this body's graph (same node count). All-or-nothing.
+    /// @throws std::invalid_argument
+    void setPermeability(const buoyancy::PermeabilityMap& map) { setPermeableSamples(map.permeableSamples()); }
+    /// The permeable samples in use.
+    const buoyancy::PermeableSamples& getPermeableSamples() const { return m_holes; }
+    /// The dry body's mass properties, mesh frame (mass kg, centre m, inertia about the centre kg·m²).
+    const buoyancy::MassProperties& getDryMassProperties() const { return m_dry; }
+    /// Change the dry body (time-varying density, the paper's Fig. 15): recomposed at the next substep.
+    /// @throws std::invalid_argument for a non-positive mass or non-finite values
+    void setDryMassProperties(const buoyancy::MassProperties& dry);
+    /// Push the composed mass properties into the body now (also done every substep).
+    void updateBodyMassProperties();
+
+private:
+    btBuoyantBody* m_body;
+    btBuoyancyWorld* m_world;
+    buoyancy::WaterGraphState m_state;
+    buoyancy::PermeableSamples m_holes;
+    buoyancy::MassProperties m_dry;
+    buoyancy::IngressScratch m_scratch;
+    std::vector<double> m_wx, m_wy, m_wz, m_f;  // world positions and water heights of the holes
+    bool m_dirty = true;
+};

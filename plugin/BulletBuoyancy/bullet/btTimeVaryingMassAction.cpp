@@ -1,0 +1,55 @@
+#include <BulletBuoyancy/bullet/btTimeVaryingMassAction.h>
+
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btFloodingAction.h>
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <cmath>
+#include <stdexcept>
+
+btTimeVaryingMassAction::btTimeVaryingMassAction(btBuoyantBody& body, btBuoyancyWorld* world,
+                                                 btBuoyantBodySettings settings, VersionFn version, DensityFn density,
+                                                 btFloodingAction* flooding)
+    : m_body(&body), m_world(world), m_settings(std::move(settings)), m_versionFn(std::move(version)),
+      m_densityFn(std::move(density)), m_flooding(flooding) {
+    if (!m_world) throw std::invalid_argument("world: null");
+    if (!m_versionFn || !m_densityFn) throw std::invalid_argument("density map: null function");
+    if (!(body.getMass() > 0)) throw std::invalid_argument("body: a fixed body has no mass to vary");
+    m_settings.fixed = false;
+    m_settings.massModel = btBuoyantMassModel::DensityMap;
+    apply(m_world->getTime());
+}
+
+void btTimeVaryingMassAction::apply(double t) {
+    const std::int64_t version = m_versionFn(t);
+    btBuoyantBodySettings s = m_settings;
+    const DensityFn& fn = m_densityFn;
+    s.arealDensity = [&fn, t](const Eigen::Vector3d& p) { return fn(t, p); };
+    // Shell integrals over the shape's surface samples (design.md 2.1), rescaled to `mass` when given.
+    const buoyancy::MassProperties mp = btBuoyantBodyMassProperties(*m_body->getShape(), s);
+    if (!(mp.mass > 0) || !std::isfinite(mp.mass) || !mp.centre.allFinite() || !mp.inertia.allFinite())
+        throw std::invalid_argument("density map: gives no positive, finite mass at t = " + std::to_string(t));
+    if (m_flooding) {
+        m_flooding->setDryMassProperties(mp);
+        m_flooding->updateBodyMassProperties();
+    } else {
+        m_body->updateMassProperties(mp.mass, mp.centre, mp.inertia);
+    }
+    m_version = version;
+    ++m_recomputes;
+}
+
+void btTimeVaryingMassAction::updateAction(btCollisionWorld*, btScalar) {
+    btRigidBody* rb = m_body->getRigidBody();
+    if (!rb->getBroadphaseHandle() || rb->getInvMass() == btScalar(0)) return;
+    const double t = m_world->getTime();
+    if (!std::isfinite(t) || m_versionFn(t) == m_version) return;
+    try {
+        apply(t);
+        rb->activate();
+    } catch (const std::invalid_argument&) {
+        // A bad map at run time leaves the body as it was (never NaN into Bullet); retried at the next version.
+        m_version = m_versionFn(t);
+    }
+}

@@ -1,0 +1,67 @@
+#pragma once
+/// @file btTimeVaryingMassAction.h
+/// A dry mass distribution that changes over time (the paper's Fig. 15 ball; "a small boat with people moving
+/// on it"): a density map σ(t, p) over the surface whose mass, centre and inertia are recomputed — only when
+/// the map changes — from the same surface samples as the buoyancy (design.md 2.1, shell integrals), and
+/// pushed into the body in place (btBuoyantBody::updateMassProperties: the mesh does not jump). With a water
+/// graph, the new dry properties go to the btFloodingAction, which composes them with the water.
+///
+/// The map says when it changes through a version number: version(t) is called every substep and the mass
+/// properties are recomputed only when it differs from the last one (e.g. floor(t / interval)).
+
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+
+#include <BulletDynamics/Dynamics/btActionInterface.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+
+class btBuoyancyWorld;
+class btFloodingAction;
+
+/// Time-varying density map of one buoyant body, as a Bullet action.
+class btTimeVaryingMassAction : public btActionInterface {
+public:
+    /// Version of the map at water-clock time t, s: recompute when it changes.
+    using VersionFn = std::function<std::int64_t(double t)>;
+    /// Areal density σ (kg/m², ≥ 0, finite) at body-frame surface point p, for the map of time t, s.
+    using DensityFn = std::function<double(double t, const Eigen::Vector3d& p)>;
+
+    /// @param body      the body (not owned)
+    /// @param world     the buoyancy context whose clock (getTime) drives the map (not owned)
+    /// @param settings  the body's mass settings: `mass` > 0 rescales every map to that total (kg), `ballast`
+    ///                  is added; massModel and arealDensity are replaced by the map
+    /// @param version   see VersionFn     @param density  see DensityFn
+    /// @param flooding  the body's water graph action, or null: receives the dry properties when present
+    /// The map of time world->getTime() is applied at once.
+    /// @throws std::invalid_argument for a fixed body, a null world or function, or a bad map (body unchanged)
+    btTimeVaryingMassAction(btBuoyantBody& body, btBuoyancyWorld* world, btBuoyantBodySettings settings,
+                            VersionFn version, DensityFn density, btFloodingAction* flooding = nullptr);
+    ~btTimeVaryingMassAction() override = default;
+    btTimeVaryingMassAction(const btTimeVaryingMassAction&) = delete;
+    btTimeVaryingMassAction& operator=(const btTimeVaryingMassAction&) = delete;
+
+    /// Called by Bullet once per substep: recompute when the version changed.
+    void updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) override;
+    /// Nothing to draw.
+    void debugDraw(btIDebugDraw*) override {}
+
+    /// How many times the mass properties were recomputed (the first one included).
+    long long getRecomputeCount() const { return m_recomputes; }
+    /// Version of the map in use.
+    std::int64_t getVersion() const { return m_version; }
+    /// Recompute and apply the map of time t now. A map that fails (σ negative, NaN, zero everywhere) is
+    /// refused and the body keeps its mass properties. @throws std::invalid_argument
+    void apply(double t);
+
+private:
+    btBuoyantBody* m_body;
+    btBuoyancyWorld* m_world;
+    btBuoyantBodySettings m_settings;
+    VersionFn m_versionFn;
+    DensityFn m_densityFn;
+    btFloodingAction* m_flooding;
+    std::int64_t m_version = 0;
+    long long m_recomputes = 0;
+};

@@ -1,0 +1,117 @@
+#pragma once
+/// @file Hydrostatics.h
+/// Submerged volume, centre of buoyancy, pressure force and torque, waterline area of a posed body in a
+/// height-field water (design.md 2.2–2.3), from samples or by exact clipping of the mesh.
+
+#include <BulletBuoyancy/bake/SurfaceSamples.h>
+#include <BulletBuoyancy/mesh/TriangleMesh.h>
+
+#include <Eigen/Geometry>
+#include <vector>
+
+class btWaterSurface;
+struct btWaterQueryCache;
+
+namespace buoyancy {
+
+class WaterPatch;
+struct MeshMomentTree;
+struct VertexShares;
+
+/// Area moments of the waterplane: the region the waterline encloses, projected on the horizontal plane, about a
+/// reference point r (x' = x − r_x, z' = z − r_z, world axes). With the waterline area they give the linear
+/// hydrostatic stiffness of a floating body in heave, roll and pitch (design.md 2.7; e.g. Faltinsen, "Sea Loads
+/// on Ships and Offshore Structures", 1990, ch. 2: C₃₃ = ρ g A, C₃₅ = −ρ g ∫x dA, C₅₅ = ρ g ∫x² dA + …).
+struct WaterplaneMoments {
+    double x = 0;    ///< ∫ x' dA, m³
+    double z = 0;    ///< ∫ z' dA, m³
+    double xx = 0;   ///< ∫ x'² dA, m⁴
+    double xz = 0;   ///< ∫ x' z' dA, m⁴
+    double zz = 0;   ///< ∫ z'² dA, m⁴
+    /// True when computed (the exact-mesh methods and the closed forms, from the waterline's segments, when the
+    /// loop they form encloses the waterline area); false for the sampled methods and the device backends.
+    bool valid = false;
+};
+
+/// Result of one hydrostatic evaluation, world frame.
+struct HydrostaticsResult {
+    double submerged_volume = 0;                          ///< m³
+    Eigen::Vector3d centre_of_buoyancy = Eigen::Vector3d::Zero(); ///< m, world; meaningless when volume is 0
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();      ///< pressure force −Σ P_i A_i, N
+    Eigen::Vector3d torque = Eigen::Vector3d::Zero();     ///< about the reference point given, N·m
+    double waterline_area = 0;                            ///< −Σ_wet A^y for samples; cap area for clipping, m²
+    double wetted_area = 0;                               ///< wetted surface area, m²
+    WaterplaneMoments waterplane;                         ///< about the reference point given
+};
+
+/// Per-body scratch arrays (world positions, area vectors, water heights), sized once and reused every
+/// substep so the hot path allocates nothing.
+struct SampleWorkspace {
+    std::vector<double> wx, wy, wz;   ///< world positions, m
+    std::vector<double> wax, way, waz; ///< world area vectors, m²
+    std::vector<double> waterHeight;  ///< f at (wx, wz), m
+    std::vector<double> warea;        ///< unsigned sample areas, m² (copied; when empty |A_i| is used)
+    /// Resize every array to n (no-op when already n).
+    void resize(std::size_t n);
+};
+
+/// Transform body-frame samples by `pose` (body → world) into ws (positions and area vectors).
+void transformSamples(const SurfaceSamples& samples, const Eigen::Isometry3d& pose, SampleWorkspace& ws);
+
+/// Sum hydrostatics over wetted samples (y_i < f_i) of a transformed workspace whose waterHeight is
+/// filled. Fields of design.md 2.2 (not the paper's eq. 11): V = Σ A^y (y − f), ∫x = Σ A^y x (y − f),
+/// ∫y = Σ A^y (y² − f²)/2, ∫z = Σ A^y z (y − f); P_i = ρ g (f_i − y_i), F = −Σ P_i A_i,
+/// τ = Σ (p_i − ref) × (−P_i A_i). Sums in double.
+/// @param fluidDensity ρ, kg/m³ (water 1000)   @param gravity g, m/s² (9.81)
+HydrostaticsResult integrateWettedSamples(const SampleWorkspace& ws, double fluidDensity, double gravity,
+                                          const Eigen::Vector3d& torqueReference);
+
+/// Convenience: transform, query the surface once (batch), integrate.
+/// @param cache  optional per-body warm-start memory for the height query (btWaterSurface::heightsCached)
+/// @param patch  optional: heights interpolated from this per-body grid instead of queried (design.md 2.5)
+HydrostaticsResult sampledHydrostatics(const SurfaceSamples& samples, const Eigen::Isometry3d& pose,
+                                       const btWaterSurface& water, double time, double fluidDensity,
+                                       double gravity, const Eigen::Vector3d& torqueReference,
+                                       SampleWorkspace& ws, btWaterQueryCache* cache = nullptr,
+                                       const WaterPatch* patch = nullptr);
+
+/// Exact-mesh method: clip every triangle of the posed mesh against the water (exact for flat water;
+/// on waves each triangle is cut against the plane through its corners' water heights), and integrate
+/// the same fields over the wetted pieces exactly (they are polynomial over a flat piece).
+HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
+                                       const btWaterSurface& water, double time, double fluidDensity,
+                                       double gravity, const Eigen::Vector3d& torqueReference);
+
+/// clippedHydrostatics with the corner heights interpolated from `patch` (built over this body at `time`)
+/// instead of queried one by one, when the surface is not flat (design.md 2.5: fewer wave queries).
+/// `patch` null: same as the overload above.
+HydrostaticsResult clippedHydrostatics(const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
+                                       const btWaterSurface& water, double time, double fluidDensity,
+                                       double gravity, const Eigen::Vector3d& torqueReference,
+                                       const WaterPatch* patch);
+
+/// The exact-mesh method through the moment tree (MeshMomentTree.h, design.md 2.5): nodes entirely under water
+/// add closed-form terms, nodes above are skipped, the triangles of straddling leaves are clipped as in
+/// clippedHydrostatics. Flat water: the same result as clippedHydrostatics to rounding. Waves given by `patch`: the
+/// water over a submerged node or a straddling leaf is the patch's second-order expansion about the node centre
+/// (error measured in tests/integrals/TreeHydrostaticsTest.cpp). Non-flat water without a patch, or waves so curved
+/// that the mesh's typical leaf is too large for the expansion (TreeHydrostatics.cpp): clippedHydrostatics.
+/// On waves the leaves too large for the expansion, or no patch: vertexHydrostatics(tree.shares, …) (the clip-all result).
+/// @param tree  buildMeshMomentTree(mesh)
+/// @throws std::invalid_argument for a tree of another mesh, bad density/gravity or a non-finite pose
+HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
+                                    const btWaterSurface& water, double time, double fluidDensity, double gravity,
+                                    const Eigen::Vector3d& torqueReference, const WaterPatch* patch = nullptr);
+
+/// clippedHydrostatics(mesh, pose, water, time, fluidDensity, gravity, torqueReference, patch) through the per-vertex
+/// shares of the mesh (VertexShares.h, design.md 2.5): the same water model and the same result to rounding, with
+/// one water height per vertex that can be under water, a few multiply-adds per wet vertex, and an exact clip only
+/// for the triangles that straddle the waterline.
+/// @param shares  buildVertexShares(mesh)
+/// @throws std::invalid_argument for bad density/gravity or a non-finite pose; std::runtime_error for a non-finite
+///         water height or result
+HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::Isometry3d& pose,
+                                      const btWaterSurface& water, double time, double fluidDensity, double gravity,
+                                      const Eigen::Vector3d& torqueReference, const WaterPatch* patch = nullptr);
+
+}  // namespace buoyancy

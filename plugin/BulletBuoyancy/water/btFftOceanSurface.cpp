@@ -1,0 +1,242 @@
+#include <BulletBuoyancy/water/btFftOceanSurface.h>
+
+#include <unsupported/Eigen/FFT>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+namespace {
+constexpr double kPi = 3.141592653589793238462643;
+constexpr double kInversionTolerance = 1e-9;  // m, choppy inversion residual
+
+/// Standard normal pair from a 64-bit Mersenne twister by Box–Muller (portable, unlike std::normal_distribution).
+void gaussianPair(std::mt19937_64& rng, double& a, double& b) {
+    const double u1 = (double((rng() >> 11) + 1)) * 0x1.0p-53;  // (0, 1]
+    const double u2 = double(rng() >> 11) * 0x1.0p-53;          // [0, 1)
+    const double r = std::sqrt(-2.0 * std::log(u1));
+    a = r * std::cos(2 * kPi * u2);
+    b = r * std::sin(2 * kPi * u2);
+}
+
+/// Frequency index m of FFT bin i (i ∈ [0, N)): m ∈ [−N/2, N/2).
+int freq(int i, int n) { return i < n / 2 ? i : i - n; }
+}  // namespace
+
+btFftOceanSurface::btFftOceanSurface(const btFftOceanSettings& s) : m_s(s) {
+    if (s.resolution < 4 || s.resolution > 4096 || s.resolution % 2)
+        throw std::invalid_argument("resolution: must be an even integer in [4, 4096]");
+    if (!std::isfinite(s.patchSize) || !(s.patchSize > 0)) throw std::invalid_argument("patch_size: must be > 0");
+    if (!std::isfinite(s.windSpeed) || !(s.windSpeed > 0)) throw std::invalid_argument("wind_speed: must be > 0");
+    const double wl = std::hypot(s.windDirectionX, s.windDirectionZ);
+    if (!std::isfinite(wl) || !(wl > 0)) throw std::invalid_argument("wind_direction: must be a finite, non-zero [dx, dz]");
+    if (!std::isfinite(s.choppiness) || s.choppiness < 0) throw std::invalid_argument("choppiness: must be >= 0");
+    if (!std::isfinite(s.height)) throw std::invalid_argument("height: must be finite");
+    if (!std::isfinite(s.gravity) || !(s.gravity > 0)) throw std::invalid_argument("gravity: must be > 0");
+    if (!std::isfinite(s.phillipsAlpha) || !(s.phillipsAlpha > 0)) throw std::invalid_argument("phillips_alpha: must be > 0");
+    if (!std::isfinite(s.jonswapGamma) || s.jonswapGamma < 1) throw std::invalid_argument("jonswap_gamma: must be >= 1");
+    m_n = s.resolution;
+    m_dk = 2 * kPi / s.patchSize;
+    m_dx = s.patchSize / m_n;
+    m_windX = s.windDirectionX / wl;
+    m_windZ = s.windDirectionZ / wl;
+    if (s.spectrum == btFftOceanSettings::Spectrum::Phillips) {
+        const double lw = s.windSpeed * s.windSpeed / s.gravity;
+        m_kPeak = std::sqrt(2.0 / 3.0) / lw;  // maximum of k⁻³ exp(−1/(k L_w)²)
+    } else {
+        const double wp = 0.855 * s.gravity / s.windSpeed;
+        m_kPeak = wp * wp / s.gravity;
+    }
+
+    const std::size_t nn = std::size_t(m_n) * m_n;
+    m_h0.assign(nn, Complex(0, 0));
+    m_omega.assign(nn, 0.0);
+    std::mt19937_64 rng(s.seed);
+    for (int j = 0; j < m_n; ++j)
+        for (int i = 0; i < m_n; ++i) {
+            double a, b;
+            gaussianPair(rng, a, b);  // drawn for every bin, so the sequence does not depend on which are zero
+            const int m = freq(i, m_n), q = freq(j, m_n);
+            const double kx = m * m_dk, kz = q * m_dk, k = std::hypot(kx, kz);
+            m_omega[std::size_t(j) * m_n + i] = std::sqrt(s.gravity * k);
+            if (k == 0 || m == -m_n / 2 || q == -m_n / 2) continue;
+            const double amp = std::sqrt(spectrumDensity(kx, kz) * m_dk * m_dk / 4.0);
+            m_h0[std::size_t(j) * m_n + i] = Complex(a * amp, b * amp);
+        }
+    m_tHeights = m_tVelocity = std::numeric_limits<double>::quiet_NaN();
+}
+
+double btFftOceanSurface::spectrumDensity(double kx, double kz) const {
+    const double k = std::hypot(kx, kz);
+    if (!(k > 0)) return 0.0;
+    const double c = (kx * m_windX + kz * m_windZ) / k;
+    if (!(c > 0)) return 0.0;  // upwind
+    const double dir = (2.0 / kPi) * c * c;
+    const double g = m_s.gravity;
+    double f;
+    if (m_s.spectrum == btFftOceanSettings::Spectrum::Phillips) {
+        const double lw = m_s.windSpeed * m_s.windSpeed / g;
+        f = 0.5 * m_s.phillipsAlpha * std::exp(-1.0 / (k * lw * k * lw)) / (k * k * k);
+    } else {
+        const double w = std::sqrt(g * k), wp = 0.855 * g / m_s.windSpeed;
+        const double sigma = w <= wp ? 0.07 : 0.09;
+        const double r = std::exp(-(w - wp) * (w - wp) / (2 * sigma * sigma * wp * wp));
+        const double sw = m_s.phillipsAlpha * g * g * std::pow(w, -5.0) * std::exp(-1.25 * std::pow(wp / w, 4.0)) *
+                          std::pow(m_s.jonswapGamma, r);
+        f = sw * g / (2 * w);  // dω/dk = g / (2ω)
+    }
+    return f * dir / k;
+}
+
+void btFftOceanSurface::inverseFft2(std::vector<Complex>& data) const {
+    // η(x) = Σ h̃ e^{ik·x}: unscaled inverse transforms along x (rows) then z (columns).
+    Eigen::FFT<double> fft;
+    fft.SetFlag(Eigen::FFT<double>::Unscaled);
+    std::vector<Complex> in(m_n), out(m_n);
+    for (int j = 0; j < m_n; ++j) {
+        std::copy(data.begin() + std::size_t(j) * m_n, data.begin() + std::size_t(j + 1) * m_n, in.begin());
+        fft.inv(out, in);
+        std::copy(out.begin(), out.end(), data.begin() + std::size_t(j) * m_n);
+    }
+    for (int i = 0; i < m_n; ++i) {
+        for (int j = 0; j < m_n; ++j) in[j] = data[std::size_t(j) * m_n + i];
+        fft.inv(out, in);
+        for (int j = 0; j < m_n; ++j) data[std::size_t(j) * m_n + i] = out[j];
+    }
+}
+
+void btFftOceanSurface::ensureHeights(double t) const {
+    if (t == m_tHeights) return;
+    const std::size_t nn = std::size_t(m_n) * m_n;
+    std::vector<Complex> ht(nn);
+    for (int j = 0; j < m_n; ++j)
+        for (int i = 0; i < m_n; ++i) {
+            const std::size_t id = std::size_t(j) * m_n + i;
+            const std::size_t neg = std::size_t((m_n - j) % m_n) * m_n + std::size_t((m_n - i) % m_n);
+            const double w = m_omega[id];
+            const Complex e(std::cos(w * t), -std::sin(w * t));  // e^{−iωt}
+            ht[id] = m_h0[id] * e + std::conj(m_h0[neg]) * std::conj(e);
+        }
+    auto toReal = [&](std::vector<Complex>& c, std::vector<double>& out) {
+        inverseFft2(c);
+        out.resize(nn);
+        for (std::size_t i = 0; i < nn; ++i) out[i] = c[i].real();
+    };
+    m_work = ht;
+    toReal(m_work, m_eta);
+    const auto mm = std::minmax_element(m_eta.begin(), m_eta.end());
+    m_etaMin = *mm.first;
+    m_etaMax = *mm.second;
+    if (m_s.choppiness > 0) {
+        for (int axis = 0; axis < 2; ++axis) {
+            m_work = ht;
+            for (int j = 0; j < m_n; ++j)
+                for (int i = 0; i < m_n; ++i) {
+                    const double kx = freq(i, m_n) * m_dk, kz = freq(j, m_n) * m_dk, k = std::hypot(kx, kz);
+                    const std::size_t id = std::size_t(j) * m_n + i;
+                    m_work[id] = k > 0 ? Complex(0, -(axis == 0 ? kx : kz) / k) * m_work[id] : Complex(0, 0);
+                }
+            toReal(m_work, axis == 0 ? m_dispX : m_dispZ);
+        }
+    }
+    m_tHeights = t;
+}
+
+void btFftOceanSurface::ensureVelocity(double t) const {
+    ensureHeights(t);
+    if (t == m_tVelocity) return;
+    const std::size_t nn = std::size_t(m_n) * m_n;
+    // ∂h̃/∂t = −iω (h0 e^{−iωt} − conj(h0(−k)) e^{iωt}); horizontal ũ = ω k̂ (h0 e^{−iωt} − conj(h0(−k)) e^{iωt}).
+    std::vector<Complex> diff(nn);
+    for (int j = 0; j < m_n; ++j)
+        for (int i = 0; i < m_n; ++i) {
+            const std::size_t id = std::size_t(j) * m_n + i;
+            const std::size_t neg = std::size_t((m_n - j) % m_n) * m_n + std::size_t((m_n - i) % m_n);
+            const double w = m_omega[id];
+            const Complex e(std::cos(w * t), -std::sin(w * t));
+            diff[id] = w * (m_h0[id] * e - std::conj(m_h0[neg]) * std::conj(e));
+        }
+    for (int c = 0; c < 3; ++c) {
+        m_work = diff;
+        for (int j = 0; j < m_n; ++j)
+            for (int i = 0; i < m_n; ++i) {
+                const double kx = freq(i, m_n) * m_dk, kz = freq(j, m_n) * m_dk, k = std::hypot(kx, kz);
+                const std::size_t id = std::size_t(j) * m_n + i;
+                if (!(k > 0)) m_work[id] = 0;
+                else if (c == 0) m_work[id] *= kx / k;
+                else if (c == 1) m_work[id] *= Complex(0, -1);
+                else m_work[id] *= kz / k;
+            }
+        inverseFft2(m_work);
+        std::vector<double>& out = c == 0 ? m_velX : c == 1 ? m_velY : m_velZ;
+        out.resize(nn);
+        for (std::size_t i = 0; i < nn; ++i) out[i] = m_work[i].real();
+    }
+    m_tVelocity = t;
+}
+
+double btFftOceanSurface::sampleField(const std::vector<double>& f, double x, double z) const {
+    const double u = x / m_dx, v = z / m_dx;
+    const double fu = std::floor(u), fv = std::floor(v), a = u - fu, b = v - fv;
+    auto wrap = [&](double i) {
+        long long r = (long long)i % m_n;
+        return std::size_t(r < 0 ? r + m_n : r);
+    };
+    const std::size_t i0 = wrap(fu), i1 = wrap(fu + 1), j0 = wrap(fv), j1 = wrap(fv + 1);
+    return (1 - b) * ((1 - a) * f[j0 * m_n + i0] + a * f[j0 * m_n + i1]) +
+           b * ((1 - a) * f[j1 * m_n + i0] + a * f[j1 * m_n + i1]);
+}
+
+void btFftOceanSurface::restPosition(double x, double z, double& x0, double& z0) const {
+    x0 = x;
+    z0 = z;
+    if (!(m_s.choppiness > 0)) return;
+    const double lam = m_s.choppiness;
+    for (int it = 0; it < kMaxIterations; ++it) {  // x0 ← x + λ D(x0)
+        const double nx = x + lam * sampleField(m_dispX, x0, z0), nz = z + lam * sampleField(m_dispZ, x0, z0);
+        const double r = std::hypot(nx - x0, nz - z0);
+        x0 = nx;
+        z0 = nz;
+        if (r <= kInversionTolerance) break;
+    }
+}
+
+void btFftOceanSurface::heights(const double* x, const double* z, std::size_t n, double t, double* outHeight) const {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    ensureHeights(t);
+    for (std::size_t i = 0; i < n; ++i) {
+        double x0, z0;
+        restPosition(x[i], z[i], x0, z0);
+        outHeight[i] = m_s.height + sampleField(m_eta, x0, z0);
+    }
+}
+
+void btFftOceanSurface::velocities(const double* x, const double* y, const double* z, std::size_t n, double t,
+                                   double* outVx, double* outVy, double* outVz) const {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    ensureVelocity(t);
+    for (std::size_t i = 0; i < n; ++i) {
+        double x0, z0;
+        restPosition(x[i], z[i], x0, z0);
+        const double decay = std::exp(std::min(0.0, m_kPeak * (y[i] - m_s.height)));
+        outVx[i] = decay * sampleField(m_velX, x0, z0);
+        outVy[i] = decay * sampleField(m_velY, x0, z0);
+        outVz[i] = decay * sampleField(m_velZ, x0, z0);
+    }
+}
+
+void btFftOceanSurface::heightBounds(double, double, double, double, double t, double& outMin, double& outMax) const {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    ensureHeights(t);
+    outMin = m_s.height + m_etaMin;
+    outMax = m_s.height + m_etaMax;
+}
+
+std::vector<double> btFftOceanSurface::elevationField(double t) const {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    ensureHeights(t);
+    return m_eta;
+}

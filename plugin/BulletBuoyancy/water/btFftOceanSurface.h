@@ -1,0 +1,90 @@
+#pragma once
+/// @file btFftOceanSurface.h
+/// A periodic ocean patch synthesised from a wave spectrum and evolved in time (Tessendorf, "Simulating
+/// Ocean Water", SIGGRAPH course notes 2001), design.md 2.8. The field is recomputed with
+/// Eigen's FFT module once per time value (cached by t), never per query; queries are bilinear lookups.
+///
+/// Conventions (all documented here so a test can rebuild them independently):
+/// - grid N×N over a square patch of side L (period L in x and z); wavevectors k = 2π/L·(m, n) with
+///   m, n ∈ [−N/2, N/2); the k = 0 mode and the Nyquist row/column (m or n = −N/2) are zero.
+/// - directional variance density Ψ(k) (m⁴, ∫Ψ d²k = variance of the elevation):
+///   Ψ(k) = F(k)·D(θ)/k, D(θ) = (2/π) cos²(θ − θ_w) downwind (k·w > 0), 0 upwind (∫D dθ = 1);
+///   Phillips: F(k) = (α/2) k⁻³ exp(−1/(k L_w)²), L_w = U²/g (α = phillipsAlpha);
+///   JONSWAP: F(k) = S(ω) dω/dk with ω = sqrt(g k), S(ω) = α g² ω⁻⁵ exp(−5/4 (ω_p/ω)⁴) γ^r,
+///   r = exp(−(ω − ω_p)²/(2 σ² ω_p²)), σ = 0.07 (ω ≤ ω_p) or 0.09, ω_p = 0.855 g/U (fully developed).
+/// - amplitudes h0(k) = (ξ_r + i ξ_i)·sqrt(Ψ(k) Δk² / 4), ξ standard normal from the seed (mt19937_64 +
+///   Box–Muller, identical on every platform), so E[Σ h²]/N² = Σ_k Ψ(k) Δk² (Parseval).
+/// - h̃(k, t) = h0(k) e^{−iωt} + conj(h0(−k)) e^{iωt}, ω = sqrt(g k) (each mode travels along its k);
+///   elevation η(x, t) = Σ_k h̃(k, t) e^{ik·x}; the surface is y = h + η.
+/// - choppiness λ ≥ 0 moves the point at rest position x₀ to x = x₀ − λ D(x₀), D = Σ_k (−i k/|k|) h̃ e^{ik·x}
+///   (the Gerstner form); the height at a given x inverts this by fixed-point iteration.
+
+#include <BulletBuoyancy/water/btWaterSurface.h>
+
+#include <complex>
+#include <cstdint>
+#include <mutex>
+#include <vector>
+
+/// Parameters of btFftOceanSurface.
+struct btFftOceanSettings {
+    enum class Spectrum { Phillips, Jonswap };
+    int resolution = 128;          ///< N, samples per side, even, 4..4096
+    double patchSize = 64.0;       ///< L, m, > 0 (the ocean repeats with this period)
+    double windSpeed = 10.0;       ///< U, m/s, > 0
+    double windDirectionX = 1.0;   ///< wind direction (normalised), world x
+    double windDirectionZ = 0.0;   ///< world z
+    Spectrum spectrum = Spectrum::Phillips;
+    double choppiness = 0.0;       ///< λ, ≥ 0 (0: no horizontal displacement); typical 0.5–1
+    std::uint64_t seed = 1;        ///< random seed of the amplitudes
+    double height = 0.0;           ///< mean level h, m
+    double gravity = 9.81;         ///< g, m/s², > 0
+    double phillipsAlpha = 0.0081; ///< α of the spectrum (Phillips' constant), > 0
+    double jonswapGamma = 3.3;     ///< γ, peak enhancement of JONSWAP, ≥ 1
+};
+
+/// FFT ocean patch (periodic in x and z).
+class btFftOceanSurface : public btWaterSurface {
+public:
+    /// @throws std::invalid_argument naming the bad setting
+    explicit btFftOceanSurface(const btFftOceanSettings& settings);
+
+    void heights(const double* x, const double* z, std::size_t n, double t, double* outHeight) const override;
+    /// Linear (Airy) surface velocity of every mode (horizontal ω k̂ h̃, vertical ∂η/∂t), evaluated at the
+    /// rest position and scaled by min(1, e^{k_p (y − h)}) with the spectral peak wavenumber k_p.
+    void velocities(const double* x, const double* y, const double* z, std::size_t n, double t, double* outVx,
+                    double* outVy, double* outVz) const override;
+    /// h + min/max of the field at time t over the whole patch.
+    void heightBounds(double minX, double minZ, double maxX, double maxZ, double t, double& outMin,
+                      double& outMax) const override;
+    bool isTimeVarying() const override { return true; }
+
+    /// Variance density Ψ(kx, kz) of the spectrum chosen, m⁴ (see the file comment).
+    double spectrumDensity(double kx, double kz) const;
+    /// The elevation samples η (without h) at time t, N×N, index j·N + i at (i·L/N, j·L/N), m.
+    std::vector<double> elevationField(double t) const;
+    /// Iteration limit of the choppy inversion (fixed point, contraction while λ|∇D| < 1).
+    static constexpr int kMaxIterations = 30;
+    const btFftOceanSettings& settings() const { return m_s; }
+    /// Spectral peak wavenumber k_p, rad/m.
+    double peakWavenumber() const { return m_kPeak; }
+
+private:
+    using Complex = std::complex<double>;
+    void ensureHeights(double t) const;   // requires m_mutex
+    void ensureVelocity(double t) const;  // requires m_mutex
+    void inverseFft2(std::vector<Complex>& data) const;
+    double sampleField(const std::vector<double>& f, double x, double z) const;
+    void restPosition(double x, double z, double& x0, double& z0) const;  // requires fields at t
+
+    btFftOceanSettings m_s;
+    int m_n;
+    double m_dk, m_dx, m_windX, m_windZ, m_kPeak;
+    std::vector<Complex> m_h0;       // N×N
+    std::vector<double> m_omega;     // N×N
+    mutable std::mutex m_mutex;
+    mutable double m_tHeights, m_tVelocity;
+    mutable std::vector<double> m_eta, m_dispX, m_dispZ, m_velX, m_velY, m_velZ;
+    mutable double m_etaMin = 0, m_etaMax = 0;
+    mutable std::vector<Complex> m_work;
+};

@@ -1,0 +1,28 @@
+#include <BulletBuoyancy/water/btWaterSurface.h>
+
+void btWaterSurface::velocities(const double*, const double*, const double*, std::size_t n, double, double* outVx,
+                                double* outVy, double* outVz) const {
+    for (std::size_t i = 0; i < n; ++i) outVx[i] = outVy[i] = outVz[i] = 0.0;
+}
+
+void btFlatWaterSurface::heights(const double*, const double*, std::size_t n, double, double* outHeight) const {
+    for (std::size_t i = 0; i < n; ++i) outHeight[i] = m_height;
+}
+
+void btFlatWaterSurface::velocities(const double*, const double*, const double*, std::size_t n, double,
+                                    double* outVx, double* outVy, double* outVz) const {
+    for (std::size_t i = 0; i < n; ++i) {
+        outVx[i] = m_currentX;
+        outVy[i] = 0.0;
+        outVz[i] = m_currentZ;
+    }
+}
+
+void btFlatWaterSurface::heightBounds(double, double, double, double, double, double& outMin, double& outMax) const {
+    outMin = outMax = m_height;
+}
+
+bool btFlatWaterSurface::isFlat(double, double& outHeight) const {
+    outHeight = m_height;
+    return true;
+}

@@ -1,0 +1,109 @@
+#pragma once
+/// @file btWaterSurface.h
+/// The water-surface seam (design.md 2.8): anything that answers "height (and velocity) at x, z, t".
+/// Bodies query it once per substep in batch form, so a surface costs one virtual call per body, not one
+/// per sample. World y is up; the water is a height field y = f(x, z, t).
+
+#include <cstddef>
+#include <vector>
+
+class btWaterSurface;
+
+/// Per-caller memory kept between batch queries (one per body and point set, owned by the caller, never used by
+/// two threads at once). A surface whose query is an iterative solve keeps its last solution here to warm-start
+/// the next query (Gerstner: each point's horizontal displacement x − x₀). Contents are surface-specific; the
+/// surface resets them when `owner` or `n` do not match. Surfaces that need nothing ignore it.
+struct btWaterQueryCache {
+    const btWaterSurface* owner = nullptr;  ///< surface that filled the arrays (nullptr: empty)
+    std::size_t n = 0;                      ///< number of points the arrays hold
+    std::vector<double> a, b;               ///< per-point state, surface-specific
+    /// Forget everything (the next query starts cold).
+    void reset() {
+        owner = nullptr;
+        n = 0;
+    }
+};
+
+/// Abstract water surface. Implementations must be thread-safe for concurrent const calls.
+class btWaterSurface {
+public:
+    virtual ~btWaterSurface() = default;
+
+    /// Surface heights f(x_i, z_i, t) for n points.
+    /// @param[in] x,z   #n world coordinates, m
+    /// @param[in] t     simulation time, s
+    /// @param[out] outHeight  #n heights, m (world y)
+    virtual void heights(const double* x, const double* z, std::size_t n, double t, double* outHeight) const = 0;
+
+    /// Water velocity at n points below the surface (currents, orbital velocity), m/s. Default: still water.
+    virtual void velocities(const double* x, const double* y, const double* z, std::size_t n, double t,
+                            double* outVx, double* outVy, double* outVz) const;
+
+    /// heights() with per-caller warm-start memory: same results (to the surface's documented tolerance), faster
+    /// when the points move little between calls. Default: ignores the cache.
+    virtual void heightsCached(const double* x, const double* z, std::size_t n, double t, double* outHeight,
+                               btWaterQueryCache& cache) const {
+        (void)cache;
+        heights(x, z, n, t, outHeight);
+    }
+
+    /// velocities() with per-caller warm-start memory (after heightsCached at the same points and time, a
+    /// Gerstner surface needs no further iteration). Default: ignores the cache.
+    virtual void velocitiesCached(const double* x, const double* y, const double* z, std::size_t n, double t,
+                                  double* outVx, double* outVy, double* outVz, btWaterQueryCache& cache) const {
+        (void)cache;
+        velocities(x, y, z, n, t, outVx, outVy, outVz);
+    }
+
+    /// Lower and upper bound of the surface height over the world x–z rectangle [minX,maxX]×[minZ,maxZ] at
+    /// time t, m. A body entirely above outMax or below outMin is skipped or takes a constant result.
+    virtual void heightBounds(double minX, double minZ, double maxX, double maxZ, double t, double& outMin,
+                              double& outMax) const = 0;
+
+    /// True when the surface is the horizontal plane y = outHeight at time t (exact clipping applies).
+    virtual bool isFlat(double t, double& outHeight) const {
+        (void)t;
+        (void)outHeight;
+        return false;
+    }
+
+    /// True when the surface changes over time (bodies in it are kept awake).
+    virtual bool isTimeVarying() const { return false; }
+
+    /// Shortest horizontal length scale of the surface's shape (the shortest wavelength), m; 0 when unknown. Sizes the
+    /// per-body wave patch (btBuoyancySettings::waterPatchNodesPerWavelength).
+    virtual double shortestWavelength() const { return 0.0; }
+
+    /// Convenience single-point query, m.
+    double height(double x, double z, double t) const {
+        double h = 0;
+        heights(&x, &z, 1, t, &h);
+        return h;
+    }
+};
+
+/// Flat, still (or uniformly flowing) water at y = height.
+class btFlatWaterSurface : public btWaterSurface {
+public:
+    /// @param height  water level, m (world y); typical 0
+    /// @param currentX,currentZ  uniform horizontal current, m/s; typical 0
+    explicit btFlatWaterSurface(double height = 0.0, double currentX = 0.0, double currentZ = 0.0)
+        : m_height(height), m_currentX(currentX), m_currentZ(currentZ) {}
+
+    void heights(const double* x, const double* z, std::size_t n, double t, double* outHeight) const override;
+    void velocities(const double* x, const double* y, const double* z, std::size_t n, double t, double* outVx,
+                    double* outVy, double* outVz) const override;
+    void heightBounds(double minX, double minZ, double maxX, double maxZ, double t, double& outMin,
+                      double& outMax) const override;
+    bool isFlat(double t, double& outHeight) const override;
+
+    /// Water level, m.
+    double level() const { return m_height; }
+    /// Move the water level, m.
+    void setLevel(double height) { m_height = height; }
+
+private:
+    double m_height;
+    double m_currentX;
+    double m_currentZ;
+};
