@@ -16,9 +16,9 @@ int main(int argc, char** argv) {
     btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
     world.setGravity(btVector3(0, -9.81, 0));
 
-    // 2. The water (any btWaterSurface) and the per-world buoyancy context: fresh water, g = 9.81.
+    // 2. The water (any btWaterSurface) and the per-world buoyancy context: fresh water, the world's gravity.
     btFlatWaterSurface water(0.0);
-    btBuoyancyWorld buoyancyWorld(&water, 1000.0, 9.81);
+    btBuoyancyWorld buoyancyWorld(&world, &water, 1000.0);
 
     // 3. A closed mesh (untrusted files belong in a child process: see bullet_examples/scene/ChildProcessImport.h).
     buoyancy::TriangleMesh mesh = argc > 1 ? buoyancy::importMeshFile(argv[1]) : buoyancy::makeBoxMesh(1, 1, 1);

@@ -81,7 +81,7 @@ std::unique_ptr<SceneWorld> buildSceneWorld(const Scene& scene, double importTim
     SceneWaterSurface sceneWater = makeSceneWater(scene);
     w.water = std::move(sceneWater.surface);
     w.interactiveWater = sceneWater.interactive;
-    w.buoyancy = std::make_unique<btBuoyancyWorld>(w.water.get(), scene.waterDensity, -scene.gravity.y());
+    w.buoyancy = std::make_unique<btBuoyancyWorld>(&w.world, w.water.get(), scene.waterDensity);  // the world's gravity
     if (scene.groundHeight) {
         // The plane through (0, h, 0) with the scene's normal (+y unless "ground.normal" slopes it).
         w.groundNormal = scene.groundNormal;

@@ -145,9 +145,11 @@ TEST_CASE("a symmetric body in calm water neither drifts nor spins", "[bullet][d
     std::printf("symmetric %s: drift %.3g m, spin %.3g rad/s\n", btBuoyancyMethodName(shape->getMethod()), drift, spin);
     // The texture samples of a UV sphere are not exactly symmetric: exact-coverage drifts 0.83 mm in these 20 s with
     // an exact evaluation every substep, 1.03 mm at the default temporal level of detail (measured); exact-mesh
-    // clips the symmetric mesh itself (1e-14 m).
+    // clips the symmetric mesh itself (1e-14 m). The sphere still heaves after 20 s (only drag damps it, and it
+    // is kept awake until it is at rest), and exact-coverage's sample asymmetry leaves a torque of about 4e-5 W R
+    // that turns it at up to 1.4e-3 rad/s meanwhile (measured); exact-mesh stays below 1e-5 rad/s.
     CHECK(drift < (bs.method == btBuoyancyMethod::ExactMesh ? 1e-6 : 2e-3));
-    CHECK(spin < 1e-3);
+    CHECK(spin < (bs.method == btBuoyancyMethod::ExactMesh ? 1e-5 : 3e-3));
 }
 
 TEST_CASE("updateMassProperties moves the COM without moving the mesh", "[bullet][massprops]") {

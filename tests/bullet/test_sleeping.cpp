@@ -33,6 +33,43 @@ TEST_CASE("a calm floating body falls asleep at its draft, at 60 and 240 Hz", "[
     CHECK(w.body(0).getMeshWorldTransform().getOrigin().y() == Approx(0.04).margin(0.4 * 0.005));
 }
 
+// Bullet's default thresholds (0.8 m/s, 1 rad/s) are far above the speeds of a bobbing body near the top of each
+// bob: the action must keep it awake until it really is at rest (energy above equilibrium), whatever they are.
+// Oracle: Archimedes — at rest, the submerged volume is s V and the weight is carried (s = density ratio).
+TEST_CASE("Bullet's default sleeping thresholds: a body sleeps only at its equilibrium", "[bullet][sleeping]") {
+    struct Case {
+        const char* name;
+        double sx, sy, sz, density, startY;
+    };
+    // A flat board (s = 0.4, stable flat: GM > 0) dropped from 0.5 m and started at the waterline, and a 1 m cube
+    // of s = 0.2 (stable face-down: s < 0.211) dropped from 1 m.
+    const Case c = GENERATE(Case{"board dropped", 1.0, 0.4, 0.8, 400, 0.7}, Case{"board at the waterline", 1.0, 0.4, 0.8, 400, 0.2},
+                            Case{"cube dropped", 1.0, 1.0, 1.0, 200, 1.5});
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(c.sx, c.sy, c.sz));
+    const double volume = c.sx * c.sy * c.sz;
+    BulletTestWorld w;
+    btBuoyantBodySettings body;
+    body.density = c.density;
+    body.linearSleepingThreshold = 0.8;  // Bullet's btRigidBodyConstructionInfo defaults
+    body.angularSleepingThreshold = 1.0;
+    w.add(shape, body, makePose(btVector3(0, btScalar(c.startY), 0)));
+    const double s = c.density / 1000.0;
+    double sleptAt = -1, volumeAtSleep = 0;
+    for (int frame = 0; frame < 60 * 40; ++frame) {
+        w.step(1, 4, 1.0 / 240);
+        const double submerged = w.action(0).getLastResult().submergedVolume;
+        if (!w.rigid(0)->isActive() && sleptAt < 0) {
+            sleptAt = (frame + 1) / 60.0;
+            volumeAtSleep = submerged;
+        }
+    }
+    INFO(c.name << ": asleep at " << sleptAt << " s, submerged fraction then " << volumeAtSleep / volume << " (s = " << s << ")");
+    CHECK(sleptAt > 0);                                      // it does sleep in calm water
+    CHECK(volumeAtSleep / volume == Approx(s).margin(0.005)); // and only at its equilibrium
+    const double draftCentre = c.sy / 2 - s * c.sy;          // mesh centre height at the draft s · height
+    CHECK(w.body(0).getMeshWorldTransform().getOrigin().y() == Approx(draftCentre).margin(0.005 * c.sy));
+}
+
 TEST_CASE("a body in waves is kept awake", "[bullet][sleeping]") {
     auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(1.0, 0.4, 0.8));
     BulletTestWorld w;

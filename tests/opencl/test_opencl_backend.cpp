@@ -95,7 +95,7 @@ void compareWorld(BulletTestWorld& w, btOpenClBuoyancyBackend& backend, const Sc
             const Eigen::Vector3d com = buoyancy::toEigen(a.getRigidBody()->getCenterOfMassPosition());
             buoyancy::SampleWorkspace ws;
             const buoyancy::HydrostaticsResult hc = buoyancy::sampledHydrostatics(
-                a.getSamplesInUse(), pose, *w.water().getWater(), w.water().getTime(), 1000, 9.81, com, ws);
+                a.getSamplesInUse(), pose, *w.water().getWater(), w.water().getTime(), 1000, w.water().getGravity(), com, ws);
             buoyancy::HydrostaticsResult hd;
             if (backend.hydrostatics(a, pose, com, hd)) {
                 worstHydro = std::max(worstHydro, std::abs(hc.submerged_volume - hd.submerged_volume) / scene.volumes[i]);

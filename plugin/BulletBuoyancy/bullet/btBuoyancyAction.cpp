@@ -245,9 +245,10 @@ void btBuoyancyAction::dragEvaluationVelocity(const buoyancy::HydrostaticsResult
 void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) {
     const double dt = double(deltaTimeStep);
     m_result.applied = false;
+    m_result.status = btBuoyancyStatus::Ok;
     // A zero, negative or non-finite step applies nothing and leaves the water's clock alone.
     if (!(dt > 0) || !std::isfinite(dt)) return;
-    m_world->beginSubstepIfNew(m_lastSubstep, dt);
+    m_world->beginSubstepIfNew(m_lastSubstep, dt, collisionWorld);
 #ifndef NDEBUG
     // Misuse check: an action whose body is in another world (a removed body has no broadphase handle and
     // is skipped below).
@@ -263,6 +264,17 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     if (!m_body->getBroadphaseHandle()) return;
     const btWaterSurface* water = m_world->getWater();
     if (!water || m_body->getInvMass() == btScalar(0)) return;
+    // No buoyancy without a gravity along the water's down axis (zero, or a world that is not y-up): say why,
+    // forget the history (its fields belong to another gravity) and apply nothing; never a NaN or an exception.
+    if (m_world->getGravityStatus() != btBuoyancyStatus::Ok) {
+        m_result = btBuoyancyResult();
+        m_result.status = m_world->getGravityStatus();
+        m_result.time = m_world->getTime();
+        m_history.clear();
+        m_hasLastCom = false;
+        m_body->setSleepingThresholds(btScalar(m_baseLinearSleep), btScalar(m_baseAngularSleep));
+        return;
+    }
     const bool waves = water->isTimeVarying();
     if (!m_body->isActive() && !waves) {  // calm water: a sleeping body stays asleep
         m_needsPrime = true;
@@ -472,10 +484,10 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
         m_history.clear();
         return;
     }
-    // Sleeping (see m_baseLinearSleep): at rest when the COM really moved less than the body's threshold over
-    // this substep and it turns slower than its angular threshold; Bullet then counts down to sleep as usual.
-    const bool atRest = m_hasLastCom && (com - m_lastCom).norm() < m_baseLinearSleep * dt &&
-                        toEigen(m_body->getAngularVelocity()).norm() < m_baseAngularSleep;
+    // Sleeping (design.md 3): at rest when the energy above the hydrostatic equilibrium is a small fraction of
+    // m g L, whatever Bullet's velocity thresholds are; Bullet then counts down to sleep as usual.
+    const bool atRest = m_hasLastCom && energyAboveEquilibrium(h, com, dt, m, gravityAcc) <
+                                            kRestEnergyFraction * m * gravityAcc.norm() * m_shape->getBoundsRadius();
     m_lastCom = com;
     m_hasLastCom = true;
     const btScalar open = atRest ? btScalar(1e6) : btScalar(0);
@@ -485,6 +497,42 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     m_result.applied = true;
     m_needsPrime = false;
     BT_BUOYANCY_CHECK_BODY(*m_body);
+}
+
+double btBuoyancyAction::energyAboveEquilibrium(const buoyancy::HydrostaticsResult& h, const Eigen::Vector3d& com,
+                                                 double dt, double mass, const Eigen::Vector3d& gravityAcc) const {
+    // Kinetic energy from the real motion of the centre of mass over the substep (Bullet's stored velocity holds
+    // the next kick: at rest on the water it is +g dt, not 0) and the stored angular velocity.
+    const Eigen::Vector3d v = (com - m_lastCom) / dt;
+    double energy = 0.5 * mass * v.squaredNorm();
+    const btVector3 wl = m_body->getWorldTransform().getBasis().transpose() * m_body->getAngularVelocity();
+    const btVector3 invI = m_body->getInvInertiaDiagLocal();
+    for (int k = 0; k < 3; ++k)
+        if (invI[k] > 0) energy += 0.5 * double(wl[k]) * double(wl[k]) / double(invI[k]);
+    // Potential energy stored in the hydrostatic spring, from the force and torque still unbalanced: a body at
+    // the top of a bob has no speed but a net force F, which a spring of stiffness k holds with energy F²/(2k).
+    // Heave: k = ρ g A_waterline. Roll and pitch: k = ρ g I_waterplane, about the weakest axis of the waterplane
+    // (its metacentric part; the torque's energy is then not underestimated by a stiffer axis). A body with no
+    // waterline (under water, or out of it) has no such spring: its kinetic energy alone decides.
+    const double g = gravityAcc.norm();
+    const double rhoG = m_world->getFluidDensity() * g;
+    const double area = h.waterline_area;
+    if (rhoG > 0 && area > 0 && std::isfinite(area)) {
+        const Eigen::Vector3d up = g > 0 ? Eigen::Vector3d(-gravityAcc / g) : Eigen::Vector3d::UnitY();
+        const double netVertical = (h.force + mass * gravityAcc).dot(up);
+        energy += netVertical * netVertical / (2.0 * rhoG * area);
+        double weakest = area * area / (4.0 * 3.14159265358979323846);  // a disc of that area, when the moments are not known
+        if (h.waterplane.valid) {
+            const buoyancy::WaterplaneMoments& wp = h.waterplane;
+            const double cx = wp.x / area, cz = wp.z / area;
+            const double ixx = wp.xx - area * cx * cx, izz = wp.zz - area * cz * cz, ixz = wp.xz - area * cx * cz;
+            const double mean = 0.5 * (ixx + izz), half = 0.5 * (ixx - izz);
+            weakest = std::max(mean - std::sqrt(half * half + ixz * ixz), 1e-12 * area * area);
+        }
+        const Eigen::Vector3d tilt = h.torque - h.torque.dot(up) * up;  // the yaw torque has no spring
+        energy += tilt.squaredNorm() / (2.0 * rhoG * weakest);
+    }
+    return energy;
 }
 
 double btBuoyancyAction::reuseLength(double waterlineArea) const {

@@ -5,13 +5,14 @@
 /// (design.md 2.3), drag and skin friction (2.6) and added mass (2.7) at the body's new pose and applies
 /// them as impulses (F·dt, τ·dt), so any maxSubSteps gives the same motion (design.md 3).
 ///
-/// Usage:  btBuoyancyWorld water(&surface);  btBuoyancyAction action(body, shape, &water);
+/// Usage:  btBuoyancyWorld water(&dynamicsWorld, &surface);  btBuoyancyAction action(body, shape, &water);
 ///         dynamicsWorld->addAction(&action);   // ... remove it before deleting the body.
 /// Removing the action from the world is safe at any time. Deleting the body while its action is still in
 /// the world is a misuse (checked in debug builds: the body must be in the world the action runs in).
 
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btHydrostaticsHistory.h>
 #include <BulletBuoyancy/integrals/DragClusters.h>
 #include <BulletBuoyancy/integrals/Hydrostatics.h>
@@ -47,6 +48,8 @@ struct btBuoyancyResult {
     /// The hydrostatic fields were predicted from earlier exact evaluations, not evaluated at this substep
     /// (btBuoyancySettings::hydrostaticsInterval > 1; btHydrostaticsHistory).
     bool predicted = false;
+    /// Ok, or why no buoyancy was computed although the body may be in the water (btBuoyancyStatusMessage).
+    btBuoyancyStatus status = btBuoyancyStatus::Ok;
 };
 
 /// Buoyancy of one rigid body in the water of a btBuoyancyWorld.
@@ -189,10 +192,19 @@ private:
     buoyancy::WaterPatch m_patch;
     btWaterQueryCache m_patchCache;
     /// @name Sleeping: Bullet tests the stored velocity, which at rest on the water is +g·dt, not 0 (the kick for
-    /// the next substep comes after integration: symplectic Euler, design.md 3). The action tests the COM's
-    /// real displacement over the substep against the body's own thresholds instead, and opens or closes
-    /// Bullet's thresholds accordingly.
+    /// the next substep comes after integration: symplectic Euler, design.md 3), against thresholds that a bobbing
+    /// body passes at the top of every bob. In the water the action decides instead, on the body's energy above
+    /// its hydrostatic equilibrium, and opens or closes Bullet's thresholds accordingly; out of the water the
+    /// body's own thresholds apply again.
     ///@{
+    /// At rest when the energy above the hydrostatic equilibrium is below this fraction of m g L (L: the radius of
+    /// the body's bounding sphere, m): a 1 × 0.4 × 0.8 m board of 0.4 the water's density rests once its heave
+    /// amplitude is below about 2 mm, whatever Bullet's own thresholds (design.md 3).
+    static constexpr double kRestEnergyFraction = 2e-5;
+    /// Kinetic energy (from the centre of mass's real motion over the substep and the angular velocity) plus the
+    /// energy held by the still unbalanced hydrostatic force and torque, J (design.md 3).
+    double energyAboveEquilibrium(const buoyancy::HydrostaticsResult& h, const Eigen::Vector3d& com, double dt,
+                                  double mass, const Eigen::Vector3d& gravityAcc) const;
     double m_baseLinearSleep = 0;   ///< the body's linear sleeping threshold when the action was made, m/s
     double m_baseAngularSleep = 0;  ///< the body's angular sleeping threshold when the action was made, rad/s
     Eigen::Vector3d m_lastCom = Eigen::Vector3d::Zero(); ///< COM after the previous wet substep, m

@@ -1,9 +1,14 @@
 #pragma once
 /// @file btBuoyancyWorld.h
 /// The per-world buoyancy context shared by every btBuoyancyAction of one btDynamicsWorld: the water
-/// surface (injected, not owned), the fluid, gravity and the water's clock. Actions register with it, so a
-/// batching backend (threads, OpenCL) can compute every body when the first action of a substep is called
+/// surface (injected, not owned), the fluid, the world's gravity and the water's clock. Actions register with it,
+/// so a batching backend (threads, OpenCL) can compute every body when the first action of a substep is called
 /// and let the others read their result.
+///
+/// Gravity is the world's: the context reads it from the btDynamicsWorld every substep, so a change at run time is
+/// followed. The pressure gradient belongs to the water, so buoyancy uses the world's gravity; a body's own gravity
+/// (btRigidBody::setGravity) is its weight only (design.md 3). The water surfaces are height fields along +y: a
+/// world whose gravity does not point down y (within 1e-6 rad) gets no buoyancy, with a status saying why.
 
 #include <cstdint>
 #include <memory>
@@ -13,6 +18,19 @@
 class btWaterSurface;
 class btBuoyancyAction;
 class btBuoyancyDeviceBackend;
+class btCollisionWorld;
+class btDynamicsWorld;
+
+/// Why the bodies of a world got no buoyancy in a substep although they may be in the water
+/// (btBuoyancyResult::status, btBuoyancyWorld::getGravityStatus).
+enum class btBuoyancyStatus {
+    Ok,                     ///< buoyancy computed (or nothing to compute: dry, asleep)
+    NoGravity,              ///< the world's gravity is zero: no pressure gradient, so no buoyancy
+    GravityNotAlongWaterUp, ///< the world's gravity does not point down the water's up axis (0, 1, 0)
+};
+
+/// One sentence for logs and messages, e.g. "the world's gravity is zero: no buoyancy".
+const char* btBuoyancyStatusMessage(btBuoyancyStatus status);
 
 /// Where the sampled bodies of a world are computed (docs/opencl.md).
 enum class btBuoyancyCompute {
@@ -23,10 +41,16 @@ enum class btBuoyancyCompute {
 /// Shared buoyancy context of one dynamics world.
 class btBuoyancyWorld {
 public:
+    /// The context of `world`: its gravity is read from the world at every substep.
+    /// @param world         the dynamics world the actions are added to; not owned, must outlive the context
     /// @param water         the water surface; not owned, must outlive the context (nullptr: no water)
     /// @param fluidDensity  ρ_w, kg/m³ (fresh water 1000, sea water 1025), > 0
-    /// @param gravity       magnitude g of the world's gravity (0, −g, 0), m/s² (9.81), ≥ 0. The water is a
-    ///                      height field in y, so gravity must point down y.
+    /// @throws std::invalid_argument for a null world, a bad density, or a world whose gravity is neither zero nor
+    ///         pointing down y (the message names the gravity and the water's up)
+    btBuoyancyWorld(btDynamicsWorld* world, const btWaterSurface* water, double fluidDensity = 1000.0);
+    /// A context without its dynamics world at hand. `gravity` (the magnitude g of (0, −g, 0), m/s², ≥ 0) is used
+    /// until the first substep; from then on the gravity of the world the actions are stepped in is read every
+    /// substep, as with the other constructor (the two can no longer disagree). Prefer the other constructor.
     /// @throws std::invalid_argument naming a bad parameter
     explicit btBuoyancyWorld(const btWaterSurface* water, double fluidDensity = 1000.0, double gravity = 9.81);
     ~btBuoyancyWorld();
@@ -41,10 +65,15 @@ public:
     double getFluidDensity() const { return m_fluidDensity; }
     /// @throws std::invalid_argument for a non-positive or non-finite density
     void setFluidDensity(double density);
-    /// g, m/s².
+    /// g, m/s²: the magnitude of the world's gravity in the current substep (0 when its status is not Ok).
     double getGravity() const { return m_gravity; }
-    /// @throws std::invalid_argument for a negative or non-finite value
+    /// Set g, m/s², for actions stepped without a dynamics world; overwritten at the next substep by the gravity of
+    /// the world the actions are stepped in. @throws std::invalid_argument for a negative or non-finite value
     void setGravity(double g);
+    /// Whether the world's gravity allows buoyancy in the current substep, and if not why.
+    btBuoyancyStatus getGravityStatus() const { return m_gravityStatus; }
+    /// The dynamics world given to the constructor (nullptr for the constructor without one).
+    btDynamicsWorld* getDynamicsWorld() const { return m_dynamicsWorld; }
 
     /// Time of the water surface at the end of the current substep, s. Advanced by dt once per substep by
     /// the actions themselves (see beginSubstepIfNew), so no callback or action order is needed.
@@ -60,8 +89,11 @@ public:
     /// Called by each action at the start of its updateAction. A new substep has begun when the calling
     /// action was already called in the current one (Bullet calls every action once per substep): the
     /// clock advances by dt, and a batching backend would compute every registered body here.
+    /// At a new substep the world's gravity is read again (getGravity, getGravityStatus).
     /// @param lastSeen  the action's own record of the substep it last ran in (updated)
-    void beginSubstepIfNew(std::uint64_t& lastSeen, double dt);
+    /// @param from      the world the calling action is stepped in (Bullet's updateAction argument); its gravity
+    ///                  is used when the context was made without a dynamics world (nullptr: keep the last g)
+    void beginSubstepIfNew(std::uint64_t& lastSeen, double dt, const btCollisionWorld* from = nullptr);
 
     ///@name Compute backend (docs/opencl.md)
     /// Select where the sampled bodies of this world are computed. OpenCl: one batched launch set per substep on
@@ -85,9 +117,14 @@ public:
     void unregisterAction(btBuoyancyAction* action);
 
 private:
+    /// Read gravity (m/s², world frame) into m_gravity and m_gravityStatus.
+    void followGravity(double gx, double gy, double gz);
+
+    btDynamicsWorld* m_dynamicsWorld = nullptr;
     const btWaterSurface* m_water;
     double m_fluidDensity;
     double m_gravity;
+    btBuoyancyStatus m_gravityStatus = btBuoyancyStatus::Ok;
     double m_time = 0;
     std::uint64_t m_substep = 0;
     std::vector<btBuoyancyAction*> m_actions;

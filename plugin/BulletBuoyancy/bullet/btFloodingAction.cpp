@@ -73,6 +73,8 @@ void btFloodingAction::updateAction(btCollisionWorld*, btScalar deltaTimeStep) {
     m_state.setPose(pose);
     const double before = m_state.totalWater();
 
+    // Water flows downhill only where the world's gravity points down the water's up axis: otherwise it stays put.
+    if (m_world->getGravityStatus() != btBuoyancyStatus::Ok) return;
     const btWaterSurface* water = m_world->getWater();
     const double g = m_world->getGravity();
     const std::size_t n = m_holes.size();
