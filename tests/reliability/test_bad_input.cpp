@@ -164,15 +164,21 @@ TEST_CASE("bad input: a mesh given to btBuoyancyShape::create without prepareMes
         CHECK_THROWS_WITH(btBuoyancyShape::create(m, s), Equals("mesh: vertex 5 is not finite"));
         CHECK_THROWS_WITH(btBuoyancyShape::create(buoyancy::TriangleMesh(), s), Equals("mesh: no triangles"));
     }
-    // Inside-out (not flipped by prepareMesh): negative volume, refused by the mass properties.
+    // Inside-out: create runs prepareMesh's checks, which turn a closed inside-out component outward (with a
+    // warning), as the command line does: the unit cube's volume is +1 by either method.
     buoyancy::TriangleMesh inverted = unitCube();
     for (auto& t : inverted.triangles) std::swap(t[1], t[2]);
-    CHECK_THROWS_WITH(btBuoyancyShape::create(inverted, exactMesh()),
-                      StartsWith("polyhedronMassProperties: enclosed volume -1.000000 m"));
+    const auto outward = btBuoyancyShape::create(inverted, exactMesh());
+    CHECK(outward->getVolume() == Approx(1.0).epsilon(1e-12));
+    CHECK_FALSE(outward->getMeshWarnings().empty());
     btBuoyancySettings sampled;
     sampled.method = btBuoyancyMethod::ExactCoverage;
     sampled.textureSize = 64;
-    CHECK_THROWS_WITH(btBuoyancyShape::create(inverted, sampled), StartsWith("solidMassProperties: enclosed volume -1"));
+    CHECK(btBuoyancyShape::create(inverted, sampled)->getVolume() == Approx(1.0).epsilon(1e-3));
+    // Open: one face missing is refused with the command line's message.
+    buoyancy::TriangleMesh open = unitCube();
+    open.triangles.resize(10);
+    CHECK_THROWS_WITH(btBuoyancyShape::create(open, exactMesh()), StartsWith("mesh: open surface"));
 }
 
 TEST_CASE("bad input: primitive mesh sizes", "[reliability][bad-input]") {

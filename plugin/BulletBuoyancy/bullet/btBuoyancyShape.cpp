@@ -1,5 +1,8 @@
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 
+#include <BulletBuoyancy/mesh/MeshImport.h>
+#include <BulletBuoyancy/mesh/MeshRepair.h>
+
 #include <BulletBuoyancy/atlas/UvLayout.h>
 #include <BulletBuoyancy/bake/BakeSamples.h>
 
@@ -76,7 +79,15 @@ std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::create(buoyancy::Triangl
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
         if (!mesh.vertices[v].allFinite())
             throw std::invalid_argument("mesh: vertex " + std::to_string(v) + " is not finite");
+    // The command line's checks, on every mesh: closed, oriented, outward, a positive volume.
+    buoyancy::MeshReport report;
+    try {
+        report = buoyancy::prepareMesh(mesh, "mesh");
+    } catch (const buoyancy::MeshError& e) {
+        throw std::invalid_argument(e.what());
+    }
     std::shared_ptr<btBuoyancyShape> shape(new btBuoyancyShape());
+    shape->m_meshWarnings = std::move(report.warnings);
     shape->m_method = btBuoyancyResolveMethod(settings, mesh.triangleCount());
     shape->m_mesh = std::move(mesh);
     const buoyancy::TriangleMesh& m = shape->m_mesh;

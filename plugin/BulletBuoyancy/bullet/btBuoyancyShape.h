@@ -21,9 +21,14 @@ public:
     /// Build the shape: resolve the method (btBuoyancyResolveMethod), choose the UV layout
     /// (chooseUvLayout) and bake samples for sampled methods, compute unit-density mass properties from
     /// the same data the buoyancy integrals use (so a body of the fluid's density is exactly neutral).
-    /// @param mesh      closed, outward mesh in its own frame, m (see prepareMesh)
+    /// The mesh goes through the checks of the command line first (prepareMesh: finite, closed, consistently
+    /// oriented, enclosing a positive volume; duplicate vertices welded, degenerate triangles dropped, an inside-out
+    /// component turned outward, each with a warning in getMeshWarnings()), so no shape can be built from an open
+    /// mesh; a mesh that already passed prepareMesh is kept as it is.
+    /// @param mesh      closed, outward mesh in its own frame, m
     /// @param settings  validated here
-    /// @throws std::invalid_argument for bad settings or a mesh enclosing no volume
+    /// @throws std::invalid_argument for bad settings, or with prepareMesh's message for a mesh that fails the
+    ///         checks (e.g. "mesh: open surface: 2 boundary edges ...")
     static std::shared_ptr<const btBuoyancyShape> create(buoyancy::TriangleMesh mesh,
                                                          const btBuoyancySettings& settings = btBuoyancySettings());
 
@@ -54,6 +59,8 @@ public:
     bool usesGeneratedUvs() const { return m_uvGenerated; }
     /// Why the model's UVs were not used (empty unless usesGeneratedUvs()), e.g. "overlapping UVs (120 triangles)".
     const std::vector<std::string>& getUvProblems() const { return m_uvProblems; }
+    /// What the mesh checks changed or noticed (flipped components, intersecting parts); empty for a clean mesh.
+    const std::vector<buoyancy::MeshWarning>& getMeshWarnings() const { return m_meshWarnings; }
     /// Texture size the samples were baked at (0 for ExactMesh).
     int getTextureSize() const { return m_samples.texture_size; }
 
@@ -71,4 +78,5 @@ private:
     double m_boundsRadius = 0;
     bool m_uvGenerated = false;
     std::vector<std::string> m_uvProblems;
+    std::vector<buoyancy::MeshWarning> m_meshWarnings;
 };
