@@ -67,6 +67,17 @@ btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBu
     m_phase = m_world->registerAction(this);
 }
 
+namespace {
+std::shared_ptr<const btBuoyancyShape> shapeOfBody(const btRigidBody* body, const btBuoyancySettings& settings) {
+    if (!body) throw std::invalid_argument("body: null");
+    if (!body->getCollisionShape()) throw std::invalid_argument("body: has no collision shape");
+    return btBuoyancyShape::fromCollisionShape(*body->getCollisionShape(), settings);
+}
+}  // namespace
+
+btBuoyancyAction::btBuoyancyAction(btRigidBody* body, btBuoyancyWorld* world, const btBuoyancySettings& settings)
+    : btBuoyancyAction(body, shapeOfBody(body, settings), world, settings, btTransform::getIdentity()) {}
+
 btBuoyancyAction::btBuoyancyAction(btBuoyantBody& body, btBuoyancyWorld* world, const btBuoyancySettings& settings)
     : btBuoyancyAction(body.getRigidBody(), body.getShape(), world, settings, body.getMeshInComFrame()) {
     m_owner = &body;
@@ -486,8 +497,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     }
     // Sleeping (design.md 3): at rest when the energy above the hydrostatic equilibrium is a small fraction of
     // m g L, whatever Bullet's velocity thresholds are; Bullet then counts down to sleep as usual.
-    const bool atRest = m_hasLastCom && energyAboveEquilibrium(h, com, dt, m, gravityAcc) <
-                                            kRestEnergyFraction * m * gravityAcc.norm() * m_shape->getBoundsRadius();
+    const bool atRest = m_hasLastCom && energyAboveEquilibrium(h, com, dt, m, gravityAcc) < restEnergy(h, m, gravityAcc);
     m_lastCom = com;
     m_hasLastCom = true;
     const btScalar open = atRest ? btScalar(1e6) : btScalar(0);
@@ -497,6 +507,21 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     m_result.applied = true;
     m_needsPrime = false;
     BT_BUOYANCY_CHECK_BODY(*m_body);
+}
+
+double btBuoyancyAction::restEnergy(const buoyancy::HydrostaticsResult& h, double mass,
+                                    const Eigen::Vector3d& gravityAcc) const {
+    const double g = gravityAcc.norm();
+    const double area = h.waterline_area;
+    if (area > 0 && std::isfinite(area) && h.submerged_volume > 0) {
+        // Afloat: the energy of a heave whose amplitude moves the submerged volume by kRestVolumeFraction of it,
+        // ½ k a² with k = ρ g A and a = ε V / A. A body put to sleep is then that close to its Archimedes draft.
+        const double a = kRestVolumeFraction * h.submerged_volume / area;
+        return 0.5 * m_world->getFluidDensity() * g * area * a * a;
+    }
+    // Under water, on the bottom or in the air: the kinetic energy of a speed of kRestSpeedFraction √(g L).
+    const double v = kRestSpeedFraction * std::sqrt(g * m_shape->getBoundsRadius());
+    return 0.5 * mass * v * v;
 }
 
 double btBuoyancyAction::energyAboveEquilibrium(const buoyancy::HydrostaticsResult& h, const Eigen::Vector3d& com,

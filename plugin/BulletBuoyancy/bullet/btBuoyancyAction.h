@@ -65,6 +65,10 @@ public:
     btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBuoyancyShape> shape, btBuoyancyWorld* world,
                      const btBuoyancySettings& settings = btBuoyancySettings(),
                      const btTransform& meshInCom = btTransform::getIdentity());
+    /// Your own rigid body as it is: the geometry is its collision shape (btBuoyancyShape::fromCollisionShape, in
+    /// the body's centre-of-mass frame, where Bullet puts the shape), the mass and inertia are the body's own.
+    /// @throws std::invalid_argument naming the collision shape's type when it is not supported, or a bad setting
+    btBuoyancyAction(btRigidBody* body, btBuoyancyWorld* world, const btBuoyancySettings& settings = btBuoyancySettings());
     /// A body made by btBuoyantBody: its mesh frame follows updateMassProperties automatically.
     btBuoyancyAction(btBuoyantBody& body, btBuoyancyWorld* world, const btBuoyancySettings& settings = btBuoyancySettings());
     ~btBuoyancyAction() override;
@@ -197,10 +201,14 @@ private:
     /// its hydrostatic equilibrium, and opens or closes Bullet's thresholds accordingly; out of the water the
     /// body's own thresholds apply again.
     ///@{
-    /// At rest when the energy above the hydrostatic equilibrium is below this fraction of m g L (L: the radius of
-    /// the body's bounding sphere, m): a 1 × 0.4 × 0.8 m board of 0.4 the water's density rests once its heave
-    /// amplitude is below about 2 mm, whatever Bullet's own thresholds (design.md 3).
-    static constexpr double kRestEnergyFraction = 2e-5;
+    /// Afloat, a body rests when its energy above the hydrostatic equilibrium is below that of a heave moving its
+    /// submerged volume by this fraction of it (so it sleeps within 0.1 % of its Archimedes draft, design.md 3).
+    static constexpr double kRestVolumeFraction = 1e-3;
+    /// Not afloat (under water, on the bottom, in the air), it rests below the kinetic energy of this fraction of
+    /// √(g L), L the radius of its bounding sphere (1.6 cm/s for L = 0.25 m).
+    static constexpr double kRestSpeedFraction = 1e-2;
+    /// The energy below which a body is at rest, J (see kRestVolumeFraction, kRestSpeedFraction).
+    double restEnergy(const buoyancy::HydrostaticsResult& h, double mass, const Eigen::Vector3d& gravityAcc) const;
     /// Kinetic energy (from the centre of mass's real motion over the substep and the angular velocity) plus the
     /// energy held by the still unbalanced hydrostatic force and torque, J (design.md 3).
     double energyAboveEquilibrium(const buoyancy::HydrostaticsResult& h, const Eigen::Vector3d& com, double dt,

@@ -74,6 +74,9 @@ void btBuoyancySettings::validate() const {
     requireNonNegative(skinFriction, "skinFriction");
     requireNonNegative(linearDamping, "linearDamping");
     requireNonNegative(addedMassCoefficient, "addedMassCoefficient");
+    if (!std::isfinite(curvedShapeTolerance) || curvedShapeTolerance <= 0 || curvedShapeTolerance > 0.1)
+        throw std::invalid_argument("curvedShapeTolerance: must be a finite number in (0, 0.1] (got " +
+                                    std::to_string(curvedShapeTolerance) + ")");
 }
 
 namespace {

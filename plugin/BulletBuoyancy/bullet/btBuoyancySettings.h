@@ -120,6 +120,12 @@ struct btBuoyancySettings {
     ///@name Features
     bool buoyancyEnabled = true; ///< pressure force and torque (design.md 2.3); off leaves only drag
 
+    ///@name Bullet collision shapes (btBuoyancyShape::fromCollisionShape)
+    /// The largest relative volume error allowed when a curved collision shape (sphere, capsule, cylinder, cone)
+    /// is tessellated (an inscribed polyhedron, refined until its volume is this close to the shape's), in
+    /// (0, 0.1]. Default 1e-3 (0.1 %); design.md 8.3 has the triangle counts it gives.
+    double curvedShapeTolerance = 1e-3;
+
     /// Check every field. @throws std::invalid_argument whose message names the field and the value
     void validate() const;
 };

@@ -1,5 +1,6 @@
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 
+#include <BulletBuoyancy/bullet/btCollisionShapeMesh.h>
 #include <BulletBuoyancy/mesh/MeshImport.h>
 #include <BulletBuoyancy/mesh/MeshRepair.h>
 
@@ -64,6 +65,12 @@ bool finite(const buoyancy::MassProperties& m) {
 }
 
 }  // namespace
+
+std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::fromCollisionShape(const btCollisionShape& shape,
+                                                                           const btBuoyancySettings& settings) {
+    settings.validate();
+    return create(btCollisionShapeToMesh(shape, settings.curvedShapeTolerance), settings);
+}
 
 std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::create(buoyancy::TriangleMesh mesh,
                                                                const btBuoyancySettings& settings) {

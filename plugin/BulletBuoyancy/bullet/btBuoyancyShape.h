@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+class btCollisionShape;
+
 /// Shared per-mesh buoyancy data (immutable once created).
 class btBuoyancyShape {
 public:
@@ -31,6 +33,12 @@ public:
     ///         checks (e.g. "mesh: open surface: 2 boundary edges ...")
     static std::shared_ptr<const btBuoyancyShape> create(buoyancy::TriangleMesh mesh,
                                                          const btBuoyancySettings& settings = btBuoyancySettings());
+    /// The shape of a Bullet collision shape, in its own frame (a rigid body's centre-of-mass frame): its geometric
+    /// shape, not Bullet's margin-inflated one; curved shapes tessellated to settings.curvedShapeTolerance
+    /// (btCollisionShapeToMesh has the supported types).
+    /// @throws std::invalid_argument naming the shape type when it is not supported, or as create()
+    static std::shared_ptr<const btBuoyancyShape> fromCollisionShape(const btCollisionShape& shape,
+                                                                     const btBuoyancySettings& settings = btBuoyancySettings());
 
     /// The concrete method (never Auto).
     btBuoyancyMethod getMethod() const { return m_method; }

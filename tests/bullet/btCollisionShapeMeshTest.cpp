@@ -1,0 +1,197 @@
+// Bring your own body: the mesh of a Bullet collision shape (btCollisionShapeToMesh, btBuoyancyShape::fromCollisionShape)
+// and the action that takes a user's btRigidBody as it is. Oracles: the closed-form volumes of the primitives, the
+// extents Bullet documents for each shape and axis, Archimedes for the floating bodies (the submerged volume of a
+// body at rest is its mass / ρ, whatever its shape).
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyShape.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btCollisionShapeMesh.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
+
+#include <btBulletDynamicsCommon.h>
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+
+using Catch::Matchers::Contains;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double volumeOf(const buoyancy::TriangleMesh& m) {
+    double v = 0;
+    for (const auto& t : m.triangles)
+        v += m.vertices[std::size_t(t[0])].dot(m.vertices[std::size_t(t[1])].cross(m.vertices[std::size_t(t[2])]));
+    return v / 6.0;
+}
+
+Eigen::Vector3d extent(const buoyancy::TriangleMesh& m, bool upper) {
+    Eigen::Vector3d e = m.vertices.front();
+    for (const auto& v : m.vertices) e = upper ? Eigen::Vector3d(e.cwiseMax(v)) : Eigen::Vector3d(e.cwiseMin(v));
+    return e;
+}
+
+}  // namespace
+
+TEST_CASE("collision shape mesh: primitives have their closed-form volume and Bullet's extents", "[bullet][shapes]") {
+    const double tol = 1e-3;
+    SECTION("box: exact, the margin inside the extents") {
+        btBoxShape box(btVector3(0.5f, 0.2f, 0.4f));
+        const auto m = btCollisionShapeToMesh(box, tol);
+        CHECK(volumeOf(m) == Approx(1.0 * 0.4 * 0.8).epsilon(1e-6));
+        CHECK(extent(m, true).x() == Approx(0.5).epsilon(1e-6));
+    }
+    SECTION("sphere: within the tolerance, inscribed") {
+        btSphereShape sphere(0.5f);
+        const double exact = 4.0 / 3.0 * kPi * 0.125;
+        const auto sm = btCollisionShapeToMesh(sphere, tol);
+        std::printf("curved shapes at tolerance %g: sphere %zu triangles\n", tol, sm.triangleCount());
+        const double v = volumeOf(sm);
+        CHECK(v <= exact);
+        CHECK(v >= exact * (1 - tol));
+        // A tighter tolerance gets closer.
+        CHECK(volumeOf(btCollisionShapeToMesh(sphere, 1e-4)) >= exact * (1 - 1e-4));
+    }
+    SECTION("capsule, cylinder and cone along x, y and z") {
+        const double r = 0.3, h = 1.2;  // cylinder/cone height; capsule: cylinder part h, radius r
+        for (int axis = 0; axis < 3; ++axis) {
+            INFO("axis " << axis);
+            std::unique_ptr<btCollisionShape> capsule, cylinder, cone;
+            const btVector3 cylHalf = axis == 0 ? btVector3(btScalar(h / 2), btScalar(r), btScalar(r))
+                                    : axis == 1 ? btVector3(btScalar(r), btScalar(h / 2), btScalar(r))
+                                                : btVector3(btScalar(r), btScalar(r), btScalar(h / 2));
+            if (axis == 0) {
+                capsule = std::make_unique<btCapsuleShapeX>(btScalar(r), btScalar(h));
+                cylinder = std::make_unique<btCylinderShapeX>(cylHalf);
+                cone = std::make_unique<btConeShapeX>(btScalar(r), btScalar(h));
+            } else if (axis == 1) {
+                capsule = std::make_unique<btCapsuleShape>(btScalar(r), btScalar(h));
+                cylinder = std::make_unique<btCylinderShape>(cylHalf);
+                cone = std::make_unique<btConeShape>(btScalar(r), btScalar(h));
+            } else {
+                capsule = std::make_unique<btCapsuleShapeZ>(btScalar(r), btScalar(h));
+                cylinder = std::make_unique<btCylinderShapeZ>(cylHalf);
+                cone = std::make_unique<btConeShapeZ>(btScalar(r), btScalar(h));
+            }
+            const double capsuleV = kPi * r * r * (h + 4.0 / 3.0 * r), cylinderV = kPi * r * r * h,
+                         coneV = kPi * r * r * h / 3.0;
+            const auto mc = btCollisionShapeToMesh(*capsule, tol), my = btCollisionShapeToMesh(*cylinder, tol),
+                       mk = btCollisionShapeToMesh(*cone, tol);
+            if (axis == 1)
+                std::printf("curved shapes at tolerance %g: capsule %zu, cylinder %zu, cone %zu triangles\n", tol,
+                            mc.triangleCount(), my.triangleCount(), mk.triangleCount());
+            CHECK(volumeOf(mc) == Approx(capsuleV).epsilon(tol * 1.01));
+            CHECK(volumeOf(my) == Approx(cylinderV).epsilon(tol * 1.01));
+            CHECK(volumeOf(mk) == Approx(coneV).epsilon(tol * 1.01));
+            // Along the axis: the capsule reaches h/2 + r, the cylinder h/2, the cone's apex +h/2 and base −h/2.
+            CHECK(extent(mc, true)[axis] == Approx(h / 2 + r).epsilon(1e-6));
+            CHECK(extent(my, true)[axis] == Approx(h / 2).epsilon(1e-6));
+            CHECK(extent(mk, true)[axis] == Approx(h / 2).epsilon(1e-6));
+            CHECK(extent(mk, false)[axis] == Approx(-h / 2).epsilon(1e-6));
+            // Across it: the radius.
+            const int across = (axis + 1) % 3;
+            CHECK(extent(my, true)[across] == Approx(r).epsilon(1e-6));
+        }
+    }
+    SECTION("convex hull: its points, without Bullet's 0.04 m margin") {
+        btConvexHullShape hull;
+        for (int i = 0; i < 8; ++i) hull.addPoint(btVector3(i & 1 ? 0.5f : -0.5f, i & 2 ? 0.5f : -0.5f, i & 4 ? 0.5f : -0.5f));
+        CHECK(volumeOf(btCollisionShapeToMesh(hull, tol)) == Approx(1.0).epsilon(1e-6));
+        hull.setLocalScaling(btVector3(2, 1, 1));
+        CHECK(volumeOf(btCollisionShapeToMesh(hull, tol)) == Approx(2.0).epsilon(1e-6));
+    }
+    SECTION("compound: children with their transforms; overlapping children refused") {
+        btBoxShape a(btVector3(0.5f, 0.5f, 0.5f)), b(btVector3(0.25f, 0.25f, 0.25f));
+        btCompoundShape compound;
+        btTransform t;
+        t.setIdentity();
+        t.setOrigin(btVector3(-1, 0, 0));
+        compound.addChildShape(t, &a);
+        t.setOrigin(btVector3(1, 0, 0));
+        compound.addChildShape(t, &b);
+        const auto m = btCollisionShapeToMesh(compound, tol);
+        CHECK(volumeOf(m) == Approx(1.0 + 0.125).epsilon(1e-6));
+        CHECK(extent(m, false).x() == Approx(-1.5).epsilon(1e-6));
+        btCompoundShape overlapping;
+        t.setOrigin(btVector3(0, 0, 0));
+        overlapping.addChildShape(t, &a);
+        t.setOrigin(btVector3(0.6f, 0, 0));
+        overlapping.addChildShape(t, &b);
+        CHECK_THROWS_WITH(btCollisionShapeToMesh(overlapping, tol), Contains("do not overlap"));
+    }
+}
+
+TEST_CASE("collision shape mesh: unsupported shapes and bad scaling are refused by name", "[bullet][shapes]") {
+    btStaticPlaneShape plane(btVector3(0, 1, 0), 0);
+    CHECK_THROWS_WITH(btCollisionShapeToMesh(plane, 1e-3), Contains("STATICPLANE") && Contains("not supported"));
+    btBoxShape box(btVector3(1, 1, 1));
+    box.setLocalScaling(btVector3(1, 0, 1));  // Bullet keeps |scale|: a zero is the scale it cannot use
+    CHECK_THROWS_WITH(btCollisionShapeToMesh(box, 1e-3), Contains("local scaling") && Contains("must be positive"));
+    btSphereShape sphere(1);
+    CHECK_THROWS_WITH(btCollisionShapeToMesh(sphere, 0.0), Contains("curvedShapeTolerance"));
+    CHECK_THROWS_WITH(btBuoyancyShape::fromCollisionShape(plane), Contains("not supported"));
+}
+
+TEST_CASE("your own btRigidBody: a btBoxShape, btSphereShape or btCapsuleShape body floats at its Archimedes draft",
+          "[bullet][shapes]") {
+    // A user's world and body, Bullet's defaults everywhere (sleeping thresholds included); the action takes the
+    // geometry from the body's collision shape, and the body's own mass and inertia.
+    struct Case {
+        const char* name;
+        double density, volume;
+    };
+    const int which = GENERATE(0, 1, 2);
+    btBoxShape box(btVector3(0.5f, 0.2f, 0.4f));   // s = 0.4: stable flat
+    btSphereShape sphere(0.5f);                      // s = 0.3
+    btCapsuleShapeZ capsule(0.25f, 1.0f);            // lying along z, s = 0.5
+    btCollisionShape* shapes[] = {&box, &sphere, &capsule};
+    const Case cases[] = {{"box", 400, 0.32},
+                          {"sphere", 300, 4.0 / 3.0 * kPi * 0.125},
+                          {"capsule", 500, kPi * 0.0625 * (1.0 + 4.0 / 3.0 * 0.25)}};
+    const Case& c = cases[which];
+    btCollisionShape* shape = shapes[which];
+
+    btDefaultCollisionConfiguration config;
+    btCollisionDispatcher dispatcher(&config);
+    btDbvtBroadphase broadphase;
+    btSequentialImpulseConstraintSolver solver;
+    btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
+    world.setGravity(btVector3(0, -9.81f, 0));
+    btFlatWaterSurface water(0.0);
+    btBuoyancyWorld buoyancyWorld(&world, &water, 1000.0);
+
+    const btScalar mass = btScalar(c.density * c.volume);
+    btVector3 inertia;
+    shape->calculateLocalInertia(mass, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
+    info.m_startWorldTransform.setOrigin(btVector3(0, 1, 0));
+    btRigidBody body(info);
+    world.addRigidBody(&body);
+    btBuoyancyAction action(&body, &buoyancyWorld);
+    world.addAction(&action);
+    // The mean over the last 10 s of 40 (a sphere's heave is damped by drag alone and still rings a little).
+    double sum = 0, lo = 1e300, hi = -1e300;
+    int count = 0;
+    for (int frame = 0; frame < 60 * 40; ++frame) {
+        world.stepSimulation(btScalar(1.0 / 60), 4, btScalar(1.0 / 240));
+        if (frame >= 60 * 30) {
+            const double v = action.getLastResult().submergedVolume;
+            sum += v;
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+            ++count;
+        }
+    }
+    const double submerged = sum / count;
+    INFO(c.name << ": mean submerged " << submerged << " m3 (" << lo << " .. " << hi << "), mass / rho "
+                << double(mass) / 1000.0 << ", velocity " << body.getLinearVelocity().length() << " m/s, spin "
+                << body.getAngularVelocity().length() << " rad/s, axis " << body.getWorldTransform().getBasis().getColumn(2).y());
+    CHECK(submerged == Approx(double(mass) / 1000.0).epsilon(3e-3));
+    CHECK(action.getLastResult().status == btBuoyancyStatus::Ok);
+    world.removeAction(&action);
+    world.removeRigidBody(&body);
+}
