@@ -3,7 +3,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-bash scripts/build.sh float
+bash scripts/build.sh float buoyancy   # the demo needs the command-line tool only (the tests: scripts/test.sh)
 scene=bullet_examples/scenes/demo_boat_gerstner.json
 out=build/demo_boat_gerstner
 echo
