@@ -2,6 +2,7 @@
 
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 #include "scene/ChildProcessImport.h"
+#include "scene/ModelSize.h"
 #include "scene/NumberFormat.h"
 #include "scene/SceneErrors.h"
 #include <BulletBuoyancy/integrals/BuoyancyMethod.h>
@@ -92,6 +93,12 @@ int runHydrostatics(const HydrostaticsOptions& o) {
         throw UsageError(e.what());
     }
     for (const auto& w : report.warnings) warnings.push_back(w);
+    if (const auto hint = modelSizeHint(mesh, o.scale)) {
+        char buf[256];
+        std::snprintf(buf, sizeof buf, "the model's largest side is %.6g m (after --scale %g): is it in another unit? "
+                      "e.g. --scale %g", hint->side, o.scale, hint->suggestedScale);
+        warnings.push_back({buf});
+    }
 
     // ---- Shape: the library's own pipeline (method choice, UVs, baking, mass properties) ---------------------
     // The CLI runs exactly what a btBuoyancyAction would use, so its numbers are the library's.

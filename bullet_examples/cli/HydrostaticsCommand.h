@@ -29,7 +29,7 @@ struct HydrostaticsOptions {
 /// Register the subcommand on `app`; when it is chosen, `run` is set to the function to call after parsing.
 void addHydrostaticsCommand(CLI::App& app, HydrostaticsOptions& options);
 
-/// Run it: prints to stdout, warnings and errors to stderr; returns the exit code (CliErrors.h).
+/// Run it: prints to stdout, warnings and errors to stderr; returns the exit code (SceneErrors.h).
 int runHydrostatics(const HydrostaticsOptions& options);
 
 }  // namespace buoyancy::cli

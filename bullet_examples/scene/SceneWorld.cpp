@@ -3,6 +3,7 @@
 #include "scene/ChildProcessImport.h"
 #include "scene/SceneErrors.h"
 #include "scene/SceneGraph.h"
+#include "scene/ModelSize.h"
 #include "scene/SceneWater.h"
 
 #include <BulletBuoyancy/mesh/MeshRepair.h>
@@ -11,6 +12,7 @@
 #include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
 
 #include <cmath>
+#include <iostream>
 #include <string>
 
 namespace buoyancy::cli {
@@ -27,6 +29,10 @@ TriangleMesh sceneMesh(const SceneBody& b, std::size_t index, double importTimeo
         if (s.type == "cylinder") return makeCylinderMesh(s.radius, s.height, s.resolution);
         TriangleMesh mesh = importMeshInChildProcess(s.file, s.scale, importTimeout);
         prepareMesh(mesh, s.file);
+        if (const auto hint = modelSizeHint(mesh, s.scale))
+            std::cerr << "warning: " << key << ": " << s.file << ": the model's largest side is " << hint->side
+                      << " m (after \"scale\": " << s.scale << "): is it in another unit? e.g. \"scale\": "
+                      << hint->suggestedScale << '\n';
         return mesh;
     } catch (const std::exception& e) {
         throw UsageError(key + ": " + e.what());

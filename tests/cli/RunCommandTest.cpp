@@ -203,3 +203,23 @@ TEST_CASE("progress: a bar redrawn in place on a terminal, lines every 10 % othe
     CHECK(ProgressReporter::formatDuration(185) == "3 min 05 s");
     CHECK(ProgressReporter::formatDuration(3720) == "1 h 02 min");
 }
+
+TEST_CASE("buoyancy run: a mesh file over 1 km gets a size warning with a \"scale\" hint, and runs", "[cli]") {
+    const std::string dir = scratchDir("run_model_size");
+    buoyancy_test::writeBoxObj(dir + "/crate_mm.obj", 1000, 500, 800);  // a 1 m crate written in millimetres
+    std::ofstream(dir + "/scene.json")
+        << R"({"duration": 0.1, "water": {"type": "flat"}, "bodies": [{"name": "crate", "shape": {"type": "mesh", )"
+        << R"("file": "crate_mm.obj", "scale": 0.01}, "density": 500, "position": [0, 0, 0]}]})";
+    const auto r = runCli({"run", dir + "/scene.json", "--out", dir + "/out", "--quiet"});
+    CHECK(r.exit_code == 0);
+    // At scale 0.01 its largest side is 10 m: in range, no warning.
+    CHECK(r.err.find("largest side") == std::string::npos);
+    std::ofstream(dir + "/scene_mm.json")
+        << R"({"duration": 0.1, "water": {"type": "flat"}, "bodies": [{"name": "crate", "shape": {"type": "mesh", )"
+        << R"("file": "crate_mm.obj", "scale": 2}, "density": 500, "position": [0, 0, 0]}]})";
+    const auto mm = runCli({"run", dir + "/scene_mm.json", "--out", dir + "/out_mm", "--quiet"});
+    CHECK(mm.exit_code == 0);
+    CHECK_THAT(mm.err, Contains("bodies[0].shape"));
+    CHECK_THAT(mm.err, Contains("the model's largest side is 2000 m"));
+    CHECK_THAT(mm.err, Contains("\"scale\": 0.002"));
+}

@@ -148,3 +148,32 @@ TEST_CASE("hydrostatics: bad input exits 2 with a message", "[cli]") {
         CHECK_THAT(r.err, Contains(c.message));
     }
 }
+
+TEST_CASE("hydrostatics: a model over 1 km or under 1 mm gets a size warning with a --scale hint, and runs", "[cli]") {
+    const std::string dir = scratchDir("model_size");
+    SECTION("a 2 m box written in millimetres") {
+        writeBoxObj(dir + "/mm.obj", 2000, 1000, 1000);
+        const auto r = runCli({"hydrostatics", dir + "/mm.obj"});
+        CHECK(r.exit_code == 0);
+        CHECK_THAT(r.err, Contains("the model's largest side is 2000 m"));
+        CHECK_THAT(r.err, Contains("--scale 0.001"));
+        // Following the hint gives the box's volume in m³ and no warning.
+        const auto scaled = runCli({"hydrostatics", dir + "/mm.obj", "--scale", "0.001", "--json"});
+        REQUIRE(scaled.exit_code == 0);
+        CHECK(scaled.err.find("largest side") == std::string::npos);
+        CHECK(nlohmann::json::parse(scaled.out)["mesh"]["volume"].get<double>() == Approx(2.0).epsilon(1e-9));
+    }
+    SECTION("a 0.5 mm box") {
+        writeBoxObj(dir + "/tiny.obj", 0.0005, 0.0005, 0.0005);
+        const auto r = runCli({"hydrostatics", dir + "/tiny.obj"});
+        CHECK(r.exit_code == 0);
+        CHECK_THAT(r.err, Contains("largest side is 0.0005 m"));
+        CHECK_THAT(r.err, Contains("--scale 1000"));
+    }
+    SECTION("1 mm and 1 km are still in range") {
+        writeBoxObj(dir + "/km.obj", 1000, 10, 10);
+        const auto r = runCli({"hydrostatics", dir + "/km.obj"});
+        CHECK(r.exit_code == 0);
+        CHECK(r.err.find("largest side") == std::string::npos);
+    }
+}
