@@ -223,3 +223,12 @@ TEST_CASE("buoyancy run: a mesh file over 1 km gets a size warning with a \"scal
     CHECK_THAT(mm.err, Contains("the model's largest side is 2000 m"));
     CHECK_THAT(mm.err, Contains("\"scale\": 0.002"));
 }
+
+TEST_CASE("buoyancy bench: a progress line per part done", "[cli]") {
+    const std::string dir = scratchDir("bench_progress");
+    const auto r = runCli({"bench", "--quick", "--parts", "fig9,lod", "--out", dir});
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.err, Contains("bench:  50 % (1 of 2 parts)"));
+    CHECK_THAT(r.err, Contains("bench: 100 % (2 of 2 parts)"));
+}
