@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# README's commands on a truly fresh Debian 12: build a minbase root with debootstrap, clone this repository
-# (its committed HEAD) into it and run README's command 1 (`bash scripts/demo.sh`) there as root, so a package
+# README's commands on a truly fresh Debian 12: build a minbase root with debootstrap, export this repository's
+# committed HEAD into it and run README's command 1 (`bash scripts/demo.sh`) there as root, so a package
 # missing from scripts/install-deps.sh fails here before a user meets it.
 #
 #   bash scripts/fresh-debian-check.sh [--tests] [--keep]
@@ -92,8 +92,10 @@ mount --bind "$debs" "$root/var/cache/apt/archives" || setup_failed "bind the pa
 mounted+=("$root/var/cache/apt/archives")
 chroot "$root" /bin/true || setup_failed "chroot into the root"
 
-echo "== git clone (committed HEAD $(git -C "$repo" rev-parse --short HEAD)) -> /root/BulletBuoyancy"
-git clone --quiet --no-hardlinks "$repo" "$root/root/BulletBuoyancy"
+# The committed tree of this repository, as a user's fresh checkout has it (a local export: nothing is fetched).
+echo "== committed HEAD $(git -C "$repo" rev-parse --short HEAD) -> /root/BulletBuoyancy"
+mkdir -p "$root/root/BulletBuoyancy"
+git -C "$repo" archive --format=tar HEAD | tar -x -C "$root/root/BulletBuoyancy"
 
 in_root() {
   chroot "$root" /usr/bin/env -i HOME=/root TERM=dumb LANG=C.UTF-8 \
