@@ -7,6 +7,8 @@
 #include <BulletBuoyancy/bullet/btBulletConvert.h>
 #include <BulletBuoyancy/integrals/Hydrostatics.h>
 
+#include <BulletBuoyancy/integrals/MeshMomentTree.h>
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -116,11 +118,12 @@ TEST_CASE("short waves: a low-poly body is queried exactly, not through a larger
         const btBuoyancyResult& r = w.action(0).getLastResult();
         REQUIRE(r.applied);
         const Eigen::Isometry3d pose = buoyancy::toEigen(w.rigid(0)->getWorldTransform() * w.body(0).getMeshInComFrame());
-        const buoyancy::HydrostaticsResult exact =
-            buoyancy::clippedHydrostatics(shape->getMesh(), pose, sea, r.time, 1000, 9.81, pose.translation());
-        // Exact queries: the same clip (a 19×19 patch would differ by its interpolation error, ~1e-5 of V). To 1e-7 of V,
-        // not to rounding: the action integrates in the body frame (per-vertex shares) and clippedHydrostatics in the
-        // world frame, and a float build's rotation is orthonormal only to float precision (~6e-8).
+        const buoyancy::MeshMomentTree& tree = shape->getMomentTree();
+        const double thickness = std::abs(tree.nodes[0].m1.trace()) / 3.0 / tree.nodes[0].area;
+        const buoyancy::HydrostaticsResult exact = buoyancy::curvedHydrostatics(
+            shape->getMesh(), tree.edges, pose, sea, r.time, 1000, 9.81, pose.translation(), thickness, nullptr);
+        // Exact queries: the same evaluation (a 19×19 patch would differ by its interpolation error, ~1e-5 of V). To
+        // 1e-7 of V, not to rounding: a float build's rotation is orthonormal only to float precision (~6e-8).
         CHECK(std::abs(r.submergedVolume - exact.submerged_volume) <= 1e-7 * 0.32);
     }
 }

@@ -134,6 +134,7 @@ MeshMomentTree buildMeshMomentTree(const TriangleMesh& mesh, int leafSize) {
     std::nth_element(leafRadii.begin(), leafRadii.begin() + std::ptrdiff_t(leafRadii.size() / 2), leafRadii.end());
     b.tree.medianLeafRadius = leafRadii[leafRadii.size() / 2];
     b.tree.shares = buildVertexShares(mesh);
+    b.tree.edges = buildMeshEdges(mesh);
     // Packed bounds: float, rounded outward. A float centre/axis is off by ≤ 2⁻²⁴ relative; the box stays conservative
     // when the half extents grow by that much of |centre| + Σ half (plus a tiny absolute floor).
     b.tree.bounds.resize(b.tree.nodes.size());

@@ -9,6 +9,7 @@
 /// substep grows with the waterline length, not with the triangle count.
 
 #include <BulletBuoyancy/integrals/VertexShares.h>
+#include <BulletBuoyancy/mesh/MeshEdges.h>
 #include <BulletBuoyancy/mesh/TriangleMesh.h>
 
 #include <Eigen/Geometry>
@@ -63,6 +64,8 @@ struct MeshMomentTree {
     /// The mesh's per-vertex shares (VertexShares.h): the evaluation on waves whose curvature makes the typical leaf
     /// too large for the closed form (TreeHydrostatics.cpp), and without a patch.
     VertexShares shares;
+    /// The mesh's edges (MeshEdges.h): the evaluation on curved water samples the water at their midpoints.
+    MeshEdges edges;
 };
 
 /// Build the tree over `mesh`: median split of the triangle centroids along the longest axis of their bounding

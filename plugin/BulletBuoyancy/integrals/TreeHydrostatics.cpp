@@ -121,10 +121,16 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
         return clippedHydrostatics(mesh, pose, water, time, fluidDensity, gravity, torqueReference, patch);
     if (tree.shares.vertexCount() != mesh.vertices.size() || tree.shares.triangleCount() != mesh.triangles.size())
         throw std::invalid_argument("treeHydrostatics: the tree was built for another mesh");
-    if (!flat && !(patch && patch->finite()))
-        return vertexHydrostatics(tree.shares, pose, water, time, fluidDensity, gravity, torqueReference, nullptr);
-    // Largest node radius for the closed form on waves (kExpansionTolerance): K₃ ρ³ / 6 ≤ tolerance · V / A.
     const double thickness = tree.nodes[0].area > 0 ? std::abs(tree.nodes[0].m1.trace()) / 3.0 / tree.nodes[0].area : 0.0;
+    // Smooth waves that declare their third-derivative scale (Gerstner): the water curved over each triangle
+    // (CurvedHydrostatics.cpp). Surfaces answering by bilinear lookups (grid, FFT, interactive) keep the plane through
+    // each triangle's corner heights (per-vertex shares).
+    const bool curved = !flat && water.heightThirdDerivativeScale(time) > 0;
+    if (!flat && !(patch && patch->finite()))
+        return curved ? curvedHydrostatics(mesh, tree.edges, pose, water, time, fluidDensity, gravity, torqueReference,
+                                           thickness, nullptr)
+                      : vertexHydrostatics(tree.shares, pose, water, time, fluidDensity, gravity, torqueReference, nullptr);
+    // Largest node radius for the closed form on waves (kExpansionTolerance): K₃ ρ³ / 6 ≤ tolerance · V / A.
     const double K3 = flat ? 0.0 : patch->thirdDerivativeBound();
     const double maxRadius = K3 > 0 ? std::cbrt(6.0 * kExpansionTolerance * thickness / K3)
                                     : std::numeric_limits<double>::infinity();
@@ -134,7 +140,9 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
     // 0.30: 22 against 28), the per-vertex shares beyond (the duck 0.38: 28 against 34; the 3,400-triangle boat 0.55,
     // the torus 0.62, the 850-triangle boat 1.1: within 5 %).
     if (!flat && tree.medianLeafRadius > 0.35 * maxRadius)
-        return vertexHydrostatics(tree.shares, pose, water, time, fluidDensity, gravity, torqueReference, patch);
+        return curved ? curvedHydrostatics(mesh, tree.edges, pose, water, time, fluidDensity, gravity, torqueReference,
+                                           thickness, patch)
+                      : vertexHydrostatics(tree.shares, pose, water, time, fluidDensity, gravity, torqueReference, patch);
     if (tree.triangles.size() != mesh.triangles.size() || tree.bounds.size() != tree.nodes.size())
         throw std::invalid_argument("treeHydrostatics: the tree was built for another mesh");
     if (flat && !std::isfinite(flatH)) throw std::runtime_error("treeHydrostatics: the flat water height is not finite");

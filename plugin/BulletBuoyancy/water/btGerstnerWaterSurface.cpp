@@ -517,6 +517,13 @@ void btGerstnerWaterSurface::warmStart(btWaterQueryCache& cache, std::size_t n, 
     }
 }
 
+double btGerstnerWaterSurface::heightThirdDerivativeScale(double) const {
+    double s = 0;
+    for (const Wave& w : m_waves) s += w.a * w.k * w.k * w.k;
+    const double j = 1.0 - m_loop;
+    return s / (j * j);
+}
+
 void btGerstnerWaterSurface::heights(const double* x, const double* z, std::size_t n, double t,
                                      double* outHeight) const {
     batch<false>(x, nullptr, z, n, t, nullptr, 0.0, false, outHeight, nullptr, nullptr, nullptr);

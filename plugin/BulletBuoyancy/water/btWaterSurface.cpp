@@ -1,8 +1,20 @@
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
+#include <cmath>
+
 void btWaterSurface::velocities(const double*, const double*, const double*, std::size_t n, double, double* outVx,
                                 double* outVy, double* outVz) const {
     for (std::size_t i = 0; i < n; ++i) outVx[i] = outVy[i] = outVz[i] = 0.0;
+}
+
+double btWaterSurface::heightThirdDerivativeScale(double t) const {
+    const double lambda = shortestWavelength();
+    if (!(lambda > 0)) return 0.0;
+    double lo = 0, hi = 0;
+    heightBounds(0.0, 0.0, 0.0, 0.0, t, lo, hi);
+    const double k = 2.0 * 3.14159265358979323846 / lambda;
+    const double s = 0.5 * (hi - lo) * k * k * k;
+    return std::isfinite(s) ? s : 0.0;
 }
 
 void btFlatWaterSurface::heights(const double*, const double*, std::size_t n, double, double* outHeight) const {

@@ -74,6 +74,13 @@ public:
     /// per-body wave patch (btBuoyancySettings::waterPatchNodesPerWavelength).
     virtual double shortestWavelength() const { return 0.0; }
 
+    /// Scale of the height field's third horizontal derivatives at time t, 1/m²: the largest |D³f[d, d, d]| over unit
+    /// horizontal directions d, as an estimate (not a strict bound). The exact-mesh evaluation on waves samples the
+    /// water over each wet triangle finely enough for this (design.md 2.5: a triangle of size h is split while
+    /// scale × h³ is large against the body's thickness). 0: the surface is flat or quadratic. Default: from
+    /// shortestWavelength() λ and heightBounds() over the origin, (f_max − f_min)/2 · (2π/λ)³; 0 when λ is unknown.
+    virtual double heightThirdDerivativeScale(double t) const;
+
     /// Convenience single-point query, m.
     double height(double x, double z, double t) const {
         double h = 0;

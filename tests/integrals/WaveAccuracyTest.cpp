@@ -1,0 +1,169 @@
+// The default exact-mesh evaluation on waves (treeHydrostatics with the wave patch the body action builds) against the
+// independent divergence-theorem reference (tests/oracles/WaveOracle.h) on low-poly shapes in a long and a short sea,
+// and against the closed form of a box under one Airy wave. Bar (design.md 2.5): worst submerged-volume error ≤ 0.1 %
+// of the body's volume, centre of buoyancy as a first-moment error |ΔC_B|·V_sub ≤ 1e-3 · V · D (D the body's diagonal).
+#include <BulletBuoyancy/bullet/btBuoyancySettings.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/integrals/MeshMomentTree.h>
+#include <BulletBuoyancy/integrals/WaterPatch.h>
+#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
+#include "oracles/OracleMeshes.h"
+#include "oracles/PolyhedralOracle.h"
+#include "oracles/WaveOracle.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <chrono>
+#include <random>
+
+using namespace buoyancy;
+using namespace buoyancy_test;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRho = 1000, kG = 9.81;
+
+/// The long sea: four Gerstner waves, wavelengths 10–60 m, amplitudes 0.2–1 m, Σ Q A k ≈ 0.17.
+std::vector<btGerstnerWave> swell() {
+    return {{1.0, 60.0, 1.0, 0.0, 0.5, 0.0},
+            {0.6, 35.0, 0.8, 0.6, 0.5, 1.3},
+            {0.35, 20.0, -0.3, 1.0, 0.5, 2.1},
+            {0.2, 10.0, 0.6, -0.8, 0.5, 0.4}};
+}
+/// A short steep sea: wavelengths 4–10 m, Σ Q A k ≈ 0.48.
+std::vector<btGerstnerWave> chop() {
+    return {{0.25, 10.0, 1.0, 0.0, 0.8, 0.0},
+            {0.18, 7.0, 0.6, 0.8, 0.8, 1.1},
+            {0.12, 5.0, -0.5, 0.87, 0.8, 2.3},
+            {0.08, 4.0, 0.9, -0.44, 0.8, 0.7}};
+}
+
+struct Shape {
+    const char* name;
+    OracleMesh mesh;
+};
+std::vector<Shape> lowPolyShapes() {
+    return {{"box-12", oracleBox(4.0, 1.0, 1.5)},
+            {"cylinder-14", oracleCylinder(0.6, 3.0, 14)},
+            {"ellipsoid-64", [] {
+                 OracleMesh m = oracleSphere(1.0, 8, 5);
+                 for (auto& v : m.verts) v = Eigen::Vector3d(2.0 * v.x(), 0.6 * v.y(), 0.8 * v.z());
+                 return m;
+             }()}};
+}
+
+/// The evaluation the body action makes by default for a mesh at this pose: the moment tree, with the wave patch
+/// the action would build (btBuoyancyWaterPatchNodes; none when it would have as many nodes as the mesh has vertices
+/// plus drag clusters).
+HydrostaticsResult defaultEvaluation(const MeshMomentTree& tree, const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
+                                     const btGerstnerWaterSurface& water, double t, const Eigen::Vector3d& com,
+                                     double radius, bool dragOn, WaterPatch& patch, btWaterQueryCache& cache) {
+    const btBuoyancySettings settings;
+    const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(settings, radius, water.shortestWavelength()));
+    const std::size_t points = mesh.vertices.size() + (dragOn ? std::size_t(settings.dragClusters) : 0);
+    const Eigen::Vector3d c = pose * Eigen::Vector3d::Zero();
+    const WaterPatch* p = nullptr;
+    if (nodes * nodes < points) {
+        patch.build(water, c.x(), c.z(), radius, t, int(nodes), cache);
+        p = &patch;
+    }
+    return treeHydrostatics(tree, mesh, pose, water, t, kRho, kG, com, p);
+}
+
+struct Worst {
+    double volumePct = 0, firstMoment = 0, forcePct = 0;
+};
+
+Worst measure(const Shape& s, const std::vector<btGerstnerWave>& sea, int poses, unsigned seed, bool dragOn) {
+    const btGerstnerWaterSurface water(sea);
+    const TriangleMesh mesh = toTriangleMesh(s.mesh);
+    const MeshMomentTree tree = buildMeshMomentTree(mesh);
+    const OracleMoments dry = oracleDryMoments(s.mesh.verts, s.mesh.tris);
+    Eigen::Vector3d lo = s.mesh.verts[0], hi = lo;
+    for (const auto& v : s.mesh.verts) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    const double D = (hi - lo).norm(), radius = 0.5 * D, height = hi.y() - lo.y();
+    double hMin = 0, hMax = 0;
+    water.heightBounds(0, 0, 0, 0, 0, hMin, hMax);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    WaterPatch patch;
+    btWaterQueryCache cache;
+    Worst w;
+    for (int i = 0; i < poses; ++i) {
+        const double t = 10.0 + 20.0 * (U(rng) + 1.0);
+        const double x = 30.0 * U(rng), z = 30.0 * U(rng);
+        const double eta = water.height(x, z, t);
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.linear() = (Eigen::AngleAxisd(kPi * U(rng), Eigen::Vector3d::UnitY()) *
+                         Eigen::AngleAxisd(0.5 * U(rng), Eigen::Vector3d(1, 0, 0.3 * U(rng)).normalized()))
+                            .toRotationMatrix();
+        pose.translation() = Eigen::Vector3d(x, eta + 0.3 * height * U(rng), z);
+        const Eigen::Vector3d com = pose * dry.centroid;
+        const HydrostaticsResult h =
+            defaultEvaluation(tree, mesh, pose, water, t, com, radius, dragOn, patch, cache);
+        WaveOracleOptions o;
+        o.maxEdge = std::max(water.shortestWavelength() / 40.0, 0.01 * D);
+        o.waterMax = hMax;
+        const WaveOracleResult ref =
+            waveOracle(oraclePose(s.mesh.verts, pose), s.mesh.tris, [&](double qx, double qz) { return water.height(qx, qz, t); },
+                       com, o);
+        w.volumePct = std::max(w.volumePct, 100.0 * std::abs(h.submerged_volume - ref.volume) / dry.volume);
+        // First moments about the centre of mass (about a point far away they would grow with the distance).
+        const Eigen::Vector3d first = (h.centre_of_buoyancy - com) * h.submerged_volume;
+        const Eigen::Vector3d firstRef = ref.firstMoment - com * ref.volume;
+        w.firstMoment = std::max(w.firstMoment, (first - firstRef).norm() / (dry.volume * D));
+        w.forcePct = std::max(w.forcePct, 100.0 * (h.force / (kRho * kG) - ref.force).norm() / dry.volume);
+    }
+    return w;
+}
+
+}  // namespace
+
+TEST_CASE("waves: the default evaluation of low-poly shapes against the divergence-theorem reference", "[waves][accuracy]") {
+    const std::pair<const char*, std::vector<btGerstnerWave>> seas[] = {{"swell", swell()}, {"chop", chop()}};
+    for (const Shape& s : lowPolyShapes())
+        for (const auto& sea : seas)
+            for (bool dragOn : {false, true}) {
+                static const int kPoses = std::getenv("BB_POSES") ? std::atoi(std::getenv("BB_POSES")) : 20;
+                const Worst w = measure(s, sea.second, kPoses, 7u, dragOn);
+                std::printf("  %-13s %-6s drag %-3s  volume %.4f %%  first moment %.2e V·D  force %.4f %% of ρgV\n", s.name,
+                            sea.first, dragOn ? "on" : "off", w.volumePct, w.firstMoment, w.forcePct);
+                INFO(s.name << " in " << sea.first << (dragOn ? " (drag on: patch)" : ""));
+                CHECK(w.volumePct <= 0.1);
+                CHECK(w.firstMoment <= 1e-3);
+                CHECK(w.forcePct <= 0.1);
+            }
+}
+
+TEST_CASE("waves: timing of the default evaluation (manual)", "[.timing]") {
+    const std::pair<const char*, std::vector<btGerstnerWave>> seas[] = {{"swell", swell()}, {"chop", chop()}};
+    for (const Shape& s : lowPolyShapes())
+        for (const auto& sea : seas) {
+            const btGerstnerWaterSurface water(sea.second);
+            const TriangleMesh mesh = toTriangleMesh(s.mesh);
+            const MeshMomentTree tree = buildMeshMomentTree(mesh);
+            WaterPatch patch;
+            btWaterQueryCache cache;
+            const int n = 2000;
+            double sink = 0;
+            const auto t0 = std::chrono::steady_clock::now();
+            for (int i = 0; i < n; ++i) {
+                const double t = 10 + 0.01 * i, x = 3.0, z = 1.0;
+                Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+                pose.linear() = Eigen::AngleAxisd(0.2, Eigen::Vector3d(1, 0, 0.2).normalized()).toRotationMatrix();
+                pose.translation() = Eigen::Vector3d(x, water.height(x, z, t), z);
+                sink += defaultEvaluation(tree, mesh, pose, water, t, pose.translation(), 3.0, false, patch, cache).submerged_volume;
+            }
+            const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / n;
+            const auto t1 = std::chrono::steady_clock::now();
+            for (int i = 0; i < n; ++i) sink += water.height(3.0 + 1e-3 * i, 1.0, 10 + 0.01 * i);
+            const double usQ = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t1).count() / n;
+            std::printf("  %-13s %-6s  %.2f us per evaluation (one height query %.3f us) %g\n", s.name, sea.first, us, usQ, sink * 0);
+        }
+}
