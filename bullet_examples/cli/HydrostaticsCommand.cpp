@@ -5,6 +5,8 @@
 #include "scene/ModelSize.h"
 #include "scene/NumberFormat.h"
 #include "scene/SceneErrors.h"
+#include "scene/SceneFile.h"
+#include "scene/SceneWater.h"
 #include <BulletBuoyancy/integrals/BuoyancyMethod.h>
 #include <BulletBuoyancy/integrals/Hydrostatics.h>
 #include <BulletBuoyancy/integrals/MassProperties.h>
@@ -20,6 +22,7 @@
 #include <filesystem>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 namespace buoyancy::cli {
@@ -27,16 +30,23 @@ namespace buoyancy::cli {
 void addHydrostaticsCommand(CLI::App& app, HydrostaticsOptions& o) {
     CLI::App* sub = app.add_subcommand(
         "hydrostatics",
-        "Dry mass properties and flat-water hydrostatics of a mesh. The pose is applied to the mesh (rotation "
-        "about the axis through the mesh origin, then translation), then flat water at y = H cuts it.");
+        "Dry mass properties and hydrostatics of a mesh. The pose is applied to the mesh (rotation about the axis "
+        "through the mesh origin, then translation), then the water cuts it: flat water at y = H, or with --water "
+        "the water a scene file describes (flat, gerstner, grid or fft) at time --time.");
     sub->add_option("MESH", o.mesh, "mesh file (.obj .ply .stl .gltf .glb .dae .fbx .3ds)")->required();
     sub->add_option("--scale", o.scale, "uniform scale applied after import (default 1)");
     sub->add_option("--rotate", o.rotate, "rotation: axis AX AY AZ (normalised) and angle DEG")
         ->expected(4)
         ->type_name("AX AY AZ DEG");
     sub->add_option("--translate", o.translate, "translation TX TY TZ, m")->expected(3)->type_name("TX TY TZ");
-    sub->add_option("--water-height", o.water_height, "flat water level H, m (default 0)");
-    sub->add_option("--water-density", o.water_density, "water density, kg/m^3 (default 1000)");
+    sub->add_option("--water-height", o.water_height, "flat water level H, m (default 0); not with --water");
+    sub->add_option("--water-density", o.water_density, "water density, kg/m^3 (default 1000); not with --water");
+    sub->add_option("--water", o.water_file,
+                    "JSON file holding a scene's \"water\" object: flat, gerstner, grid or fft (interactive water needs "
+                    "`buoyancy run`); its \"density\" is the water's, a grid's \"file\" is relative to this "
+                    "file's folder")
+        ->type_name("FILE.json");
+    sub->add_option("--time", o.time, "time at which the --water water is taken, s (default 0); needs --water")->type_name("T");
     sub->add_option("--gravity", o.gravity, "gravitational acceleration g, m/s^2 (default 9.81)");
     sub->add_option("--method", o.method,
                     "texel-centre | exact-coverage | exact-mesh | default (default: chosen per mesh)");
@@ -57,6 +67,76 @@ bool allFinite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
 nlohmann::json vec(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
 
+/// The water the mesh is cut by: flat water from the flags, or the water of a `--water` file at `--time`.
+struct CommandWater {
+    std::unique_ptr<btWaterSurface> surface;
+    std::string type = "flat";          ///< the scene file's water type: flat, gerstner, grid or fft
+    std::optional<std::string> file;    ///< the --water file; absent for the flags' flat water
+    double time = 0;                    ///< the water's time, s
+    std::optional<double> meanLevel;    ///< mean (rest) level, m (world y); absent for a grid (absolute heights)
+    double density = 1000;              ///< kg/m³
+};
+
+/// Refuses the flag combinations that cannot mean anything; every message names both flags.
+void checkWaterFlags(const HydrostaticsOptions& o) {
+    if (o.water_file && o.water_height)
+        throw UsageError("--water-height cannot be used with --water: the water file sets the level (its \"height\" "
+                         "key)");
+    if (o.water_file && o.water_density)
+        throw UsageError("--water-density cannot be used with --water: the water file sets the density (its "
+                         "\"density\" key)");
+    if (o.time && !o.water_file)
+        throw UsageError("--time needs --water: the flat water of --water-height does not change with time");
+    if (o.time) requireFinite(*o.time, "--time");
+    if (o.water_height) requireFinite(*o.water_height, "--water-height");
+    if (o.water_density) {
+        requireFinite(*o.water_density, "--water-density");
+        if (!(*o.water_density > 0)) throw UsageError("--water-density must be positive");
+    }
+    if (o.water_file && o.water_file->empty()) throw UsageError("--water: the file name is empty");
+}
+
+/// The water of the flags, or of the --water file (read by the scene reader, built as `buoyancy run` builds it).
+/// @param gravity  g, m/s² (the waves' dispersion)
+CommandWater makeCommandWater(const HydrostaticsOptions& o, double gravity) {
+    CommandWater w;
+    w.time = o.time.value_or(0.0);
+    if (!o.water_file) {
+        w.meanLevel = o.water_height.value_or(0.0);
+        w.density = o.water_density.value_or(1000.0);
+        w.surface = std::make_unique<btFlatWaterSurface>(*w.meanLevel);
+        return w;
+    }
+    const std::string& path = *o.water_file;
+    const Scene scene = loadSceneWaterFile(path, gravity, [](const std::string& type) -> std::string {
+        if (type == "interactive")
+            return "\"interactive\" water needs a simulation (the bodies push it and it moves with them): use it in "
+                   "a scene with `buoyancy run`";
+        return "";
+    });
+    SceneWaterSurface made;
+    try {
+        made = makeSceneWater(scene);
+    } catch (const UsageError& e) {
+        throw UsageError(path + ": " + e.what());
+    }
+    w.surface = std::move(made.surface);
+    w.type = scene.water.type;
+    w.file = path;
+    w.density = scene.waterDensity;
+    if (w.type != "grid") w.meanLevel = scene.waterHeight;
+    return w;
+}
+
+/// The "water" entry of --json.
+nlohmann::json waterJson(const CommandWater& w) {
+    return {{"type", w.type},
+            {"file", w.file ? nlohmann::json(*w.file) : nlohmann::json(nullptr)},
+            {"time", w.time},
+            {"height", w.meanLevel ? nlohmann::json(*w.meanLevel) : nlohmann::json(nullptr)},
+            {"density", w.density}};
+}
+
 }  // namespace
 
 int runHydrostatics(const HydrostaticsOptions& o) {
@@ -65,11 +145,9 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     if (!(o.scale > 0)) throw UsageError("--scale must be positive (got " + std::to_string(o.scale) + ")");
     for (double v : o.rotate) requireFinite(v, "--rotate");
     for (double v : o.translate) requireFinite(v, "--translate");
-    requireFinite(o.water_height, "--water-height");
-    requireFinite(o.water_density, "--water-density");
+    checkWaterFlags(o);
     requireFinite(o.gravity, "--gravity");
     requireFinite(o.import_timeout, "--import-timeout");
-    if (!(o.water_density > 0)) throw UsageError("--water-density must be positive");
     if (!(o.gravity > 0)) throw UsageError("--gravity must be positive (gravity points down y)");
     if (!(o.import_timeout > 0)) throw UsageError("--import-timeout must be positive");
     const Eigen::Vector3d axis(o.rotate[0], o.rotate[1], o.rotate[2]);
@@ -79,6 +157,8 @@ int runHydrostatics(const HydrostaticsOptions& o) {
                          "' (texel-centre, exact-coverage, exact-mesh, default)");
     if (o.texture && (*o.texture < 1 || *o.texture > 8192))
         throw UsageError("--texture must be between 1 and 8192 (got " + std::to_string(*o.texture) + ")");
+    // The water file is read before the (slower) mesh import, so its mistakes are reported at once.
+    const CommandWater water = makeCommandWater(o, o.gravity);
 
     // ---- Load and check the mesh (assimp in a child process) -------------------------------------------------
     std::vector<MeshWarning> warnings;
@@ -135,7 +215,6 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translate(Eigen::Vector3d(o.translate[0], o.translate[1], o.translate[2]));
     pose.rotate(Eigen::AngleAxisd(o.rotate[3] * M_PI / 180.0, axis.normalized()));
-    const btFlatWaterSurface water(o.water_height);
 
     const MassProperties& dry = shape->getUnitSolid();
     HydrostaticsResult wet;
@@ -143,11 +222,11 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     const std::string uvSource = shape->usesGeneratedUvs() || !meshHadUvs ? "generated" : "model";
     const std::size_t sampleCount = shape->getSamples().size();
     if (method == btBuoyancyMethod::ExactMesh) {
-        wet = treeHydrostatics(shape->getMomentTree(), shape->getMesh(), pose, water, 0.0, o.water_density, o.gravity,
-                               pose * dry.centre);  // as the action computes it (design.md 2.5)
+        wet = treeHydrostatics(shape->getMomentTree(), shape->getMesh(), pose, *water.surface, water.time,
+                               water.density, o.gravity, pose * dry.centre);  // as the action computes it (design.md 2.5)
     } else {
         SampleWorkspace ws;
-        wet = sampledHydrostatics(shape->getSamples(), pose, water, 0.0, o.water_density, o.gravity,
+        wet = sampledHydrostatics(shape->getSamples(), pose, *water.surface, water.time, water.density, o.gravity,
                                   pose * dry.centre, ws);
     }
     if (!std::isfinite(dry.volume) || !allFinite(dry.centre) || !dry.inertia.allFinite() ||
@@ -180,6 +259,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
                           {"force", vec(wet.force)},
                           {"torque", vec(wet.torque)},
                           {"waterline_area", wet.waterline_area}};
+        j["water"] = waterJson(water);
         removeNegativeZeros(j);
         std::cout << j.dump(2) << '\n';
         return kExitOk;
@@ -206,8 +286,15 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     std::printf("method             %s", btBuoyancyMethodName(method));
     if (texture) std::printf(" (texture %dx%d, %zu samples)", texture, texture, sampleCount);
     std::printf("\nlevel of detail    %s", btBuoyancyPickLevelOfDetail(settings, triangles).description.c_str());
-    std::printf("\nwater              flat at y = %.9g m, density %.9g kg/m^3, g = %.9g m/s^2\n", withoutNegativeZero(o.water_height),
-                o.water_density, o.gravity);
+    if (!water.file) {
+        std::printf("\nwater              flat at y = %.9g m, density %.9g kg/m^3, g = %.9g m/s^2\n",
+                    withoutNegativeZero(*water.meanLevel), water.density, o.gravity);
+    } else {
+        std::printf("\nwater              %s from %s at t = %.9g s", water.type.c_str(), water.file->c_str(),
+                    withoutNegativeZero(water.time));
+        if (water.meanLevel) std::printf(", mean level y = %.9g m", withoutNegativeZero(*water.meanLevel));
+        std::printf(", density %.9g kg/m^3, g = %.9g m/s^2\n", water.density, o.gravity);
+    }
     std::printf("submerged volume   %.9g m^3 (%.6g %% of the body)\n", isWet ? wet.submerged_volume : 0.0,
                 dry.volume > 0 ? 100.0 * (isWet ? wet.submerged_volume : 0.0) / dry.volume : 0.0);
     std::printf("centre of buoyancy %s\n", isWet ? (v3(wet.centre_of_buoyancy) + " m (world)").c_str() : "none (dry)");

@@ -1,6 +1,7 @@
 #pragma once
 /// @file HydrostaticsCommand.h
-/// `buoyancy hydrostatics MESH …`: dry mass properties and flat-water hydrostatics of a posed mesh.
+/// `buoyancy hydrostatics MESH …`: dry mass properties and hydrostatics of a posed mesh, in flat water or in any
+/// water a scene file can describe (`--water FILE.json`) at a given time.
 
 #include <CLI/CLI.hpp>
 
@@ -16,8 +17,10 @@ struct HydrostaticsOptions {
     double scale = 1.0;                       ///< uniform scale applied after import
     std::vector<double> rotate{0, 1, 0, 0};    ///< axis x, y, z and angle in degrees (about the mesh origin)
     std::vector<double> translate{0, 0, 0};    ///< m, applied after the rotation
-    double water_height = 0.0;                ///< m (world y)
-    double water_density = 1000.0;            ///< kg/m³
+    std::optional<double> water_height;       ///< flat water level, m (world y); 0 when absent; not with water_file
+    std::optional<double> water_density;      ///< kg/m³; 1000 when absent; not with water_file
+    std::optional<std::string> water_file;    ///< JSON file holding a scene's "water" object; absent: flat water
+    std::optional<double> time;               ///< the water's time, s (default 0); only with water_file
     double gravity = 9.81;                    ///< m/s²
     std::string method = "default";           ///< texel-centre | exact-coverage | exact-mesh | default
     std::optional<int> texture;               ///< N (texture N×N); ignored with a warning for exact-mesh

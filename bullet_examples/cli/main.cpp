@@ -1,5 +1,5 @@
 // The `buoyancy` command-line tool: one executable, one subcommand per job.
-//   buoyancy hydrostatics MESH [...]   dry mass properties and flat-water hydrostatics
+//   buoyancy hydrostatics MESH [...]   dry mass properties and hydrostatics (flat water, or --water FILE.json)
 //   buoyancy run SCENE.json --out DIR  headless scene runner (trajectory CSV)
 //   buoyancy bench [--quick] [--out DIR]  speed against error benchmark
 // Exit codes (every subcommand): 0 success, 2 bad input or usage, 3 internal failure.

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <sstream>
 
@@ -25,6 +26,8 @@ public:
         : SceneJsonReader([source](const std::string& key, const std::string& what) {
               throw UsageError(source + ": " + key + ": " + what);
           }) {}
+    /// A reader with its own fail function (which must throw).
+    explicit Reader(SceneFailFn fail) : SceneJsonReader(std::move(fail)) {}
 };
 
 constexpr double kBig = 1e6;  // bounds for lengths, m, and speeds
@@ -239,11 +242,17 @@ void readHeightCsv(const Reader& r, const std::string& path, const std::string& 
     if (w.gridNx < 2 || w.gridNz < 2) r.fail(key, path + ": needs at least 2 rows of at least 2 values");
 }
 
-void readWater(const Reader& r, const json& w, Scene& s, const std::string& directory) {
+/// `refuseType` (optional): returns why a type cannot be used where this water is read ("" to accept it).
+void readWater(const Reader& r, const json& w, Scene& s, const std::string& directory,
+               const SceneWaterTypeFilter& refuseType = {}) {
     r.requireObject(w, "water");
     SceneWater& out = s.water;
     out.type = w.contains("type") ? r.string(w["type"], "water.type") : "flat";
     const std::string& t = out.type;
+    if (refuseType) {
+        const std::string why = refuseType(t);
+        if (!why.empty()) r.fail("water.type", why);
+    }
     if (t == "flat") r.allowKeys(w, "water", {"type", "height", "density", "current"});
     else if (t == "gerstner") r.allowKeys(w, "water", {"type", "height", "density", "waves"});
     else if (t == "grid") r.allowKeys(w, "water", {"type", "density", "file", "origin", "spacing", "periodic"});
@@ -392,15 +401,60 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
     return s;
 }
 
-Scene loadSceneFile(const std::string& path) {
+Scene parseSceneWater(const std::string& text, const std::string& sourceName, const std::string& directory,
+                      double gravity, const SceneWaterTypeFilter& refuseType) {
+    // The keys are those of a scene's "water" object; in a file that holds only that object they are named
+    // from its top level ("waves[0].amplitude", not "water.waves[0].amplitude").
+    const Reader r([sourceName](const std::string& key, const std::string& what) {
+        const std::string prefix = "water.";
+        const std::string local = key.compare(0, prefix.size(), prefix) == 0 ? key.substr(prefix.size()) : key;
+        throw UsageError(sourceName + ": " + local + ": " + what);
+    });
+    if (!std::isfinite(gravity) || !(gravity > 0))
+        throw UsageError(sourceName + ": gravity must be a positive number of m/s^2 (got " + std::to_string(gravity) + ")");
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers like 1e400
+        throw UsageError(sourceName + ": invalid JSON: " + e.what());
+    }
+    Scene s;
+    s.directory = directory;
+    s.gravity = Eigen::Vector3d(0, -gravity, 0);
+    readWater(r, j, s, directory, refuseType);
+    return s;
+}
+
+namespace {
+
+/// The whole text of a JSON file (`what` names it in the message: "scene file", "water file").
+std::string readJsonFileText(const std::string& path, const std::string& what) {
     std::error_code ec;  // a directory opens as a stream but fails on the first read
-    if (!std::filesystem::is_regular_file(path, ec)) throw UsageError(path + ": cannot read the scene file (not a file)");
+    if (!std::filesystem::is_regular_file(path, ec)) throw UsageError(path + ": cannot read the " + what + " (not a file)");
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw UsageError(path + ": cannot read the scene file");
+    if (!in) throw UsageError(path + ": cannot read the " + what);
     std::ostringstream text;
     text << in.rdbuf();
+    return text.str();
+}
+
+/// The folder relative paths in the file at `path` are resolved against ("." for a bare file name).
+std::string folderOf(const std::string& path) {
     const std::filesystem::path p(path);
-    return parseScene(text.str(), p.filename().string(), p.parent_path().empty() ? "." : p.parent_path().string());
+    return p.parent_path().empty() ? "." : p.parent_path().string();
+}
+
+}  // namespace
+
+Scene loadSceneFile(const std::string& path) {
+    const std::string text = readJsonFileText(path, "scene file");
+    return parseScene(text, std::filesystem::path(path).filename().string(), folderOf(path));
+}
+
+Scene loadSceneWaterFile(const std::string& path, double gravity,
+                         const SceneWaterTypeFilter& refuseType) {
+    const std::string text = readJsonFileText(path, "water file");
+    return parseSceneWater(text, path, folderOf(path), gravity, refuseType);
 }
 
 }  // namespace buoyancy::cli

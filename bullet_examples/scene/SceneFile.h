@@ -11,6 +11,7 @@
 #include "scene/SceneGraph.h"
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -97,5 +98,24 @@ Scene loadSceneFile(const std::string& path);
 
 /// Parse a scene from JSON text; `sourceName` prefixes messages, `directory` resolves mesh paths.
 Scene parseScene(const std::string& text, const std::string& sourceName, const std::string& directory);
+
+/// Why a water type cannot be used by the caller (e.g. interactive water outside a simulation), or "" to accept it.
+using SceneWaterTypeFilter = std::function<std::string(const std::string& type)>;
+
+/// Parse a lone water object: JSON text holding what a scene's "water" key holds (same keys, defaults and checks;
+/// messages name the keys from the object's top level: "FILE: waves[0].wavelength: ...").
+/// @param sourceName  prefixes every message (the file)
+/// @param directory   folder a grid's relative "file" is resolved against
+/// @param gravity     g, m/s², > 0: the waves' dispersion (gerstner, fft)
+/// @param refuseType  optional: a type it returns a reason for is refused with that reason, naming the "type" key
+/// @return a Scene with only gravity, directory, waterHeight, waterDensity and water set (no bodies), ready for
+///         makeSceneWater (SceneWater.h)
+/// @throws UsageError naming the source and the key
+Scene parseSceneWater(const std::string& text, const std::string& sourceName, const std::string& directory,
+                      double gravity, const SceneWaterTypeFilter& refuseType = {});
+
+/// parseSceneWater on the file at `path` (messages begin with `path`; a relative grid "file" is resolved against
+/// the file's folder). @throws UsageError for a missing or unreadable file and every problem parseSceneWater finds
+Scene loadSceneWaterFile(const std::string& path, double gravity, const SceneWaterTypeFilter& refuseType = {});
 
 }  // namespace buoyancy::cli
