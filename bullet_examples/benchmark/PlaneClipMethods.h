@@ -37,14 +37,15 @@ struct WaterPlane {
 constexpr double kTangentPlaneStep = 1e-3;
 
 /// The tangent plane of the water at (x, z): the height there and the normal (−η_x, 1, −η_z)/|·| from central
-/// differences with step `step` (m); five heights in one batch query.
+/// differences with step `step`; five heights in one batch query.
+/// @param x,z    world position, m   @param time  water time, s   @param step  central-difference step, m
 /// @param cache  optional per-caller warm-start memory of the surface (btWaterSurface::heightsCached)
 WaterPlane tangentWaterPlane(const btWaterSurface& water, double x, double z, double time,
                              double step = kTangentPlaneStep, btWaterQueryCache* cache = nullptr);
 
 /// The least-squares plane h = a + b (x − c_x) + c (z − c_z) through the water heights at the four corners and the
-/// centre (c_x, c_z) of the rectangle [minX, maxX] × [minZ, maxZ] (m); five heights in one batch query. For this
-/// symmetric stencil a is the mean height, b and c the corner differences over the extents.
+/// centre (c_x, c_z) of the rectangle [minX, maxX] × [minZ, maxZ] (world, m) at `time` (s); five heights in one batch
+/// query. For this symmetric stencil a is the mean height, b and c the corner differences over the extents.
 WaterPlane fittedWaterPlane(const btWaterSurface& water, double minX, double minZ, double maxX, double maxZ,
                             double time, btWaterQueryCache* cache = nullptr);
 
