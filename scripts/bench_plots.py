@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Plots of docs/benchmarks from the CSVs `buoyancy bench` writes.
-Usage: bench_plots.py DIR   -> DIR/pareto_volume.png, DIR/pareto_cob.png, DIR/fig9_sphere_volume.png, DIR/scaling.png
+Usage: bench_plots.py DIR   -> DIR/pareto_volume.png, DIR/pareto_cob.png (flat water), DIR/pareto_waves.png (the wave
+rows), DIR/fig9_sphere_volume.png, DIR/scaling.png
 A configuration's error is its worst error over the poses, its time the mean."""
 import csv, math, os, sys
 from collections import OrderedDict
@@ -10,7 +11,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 COLOURS = {"default": "black", "texel-centre": "tab:red", "exact-coverage": "tab:blue", "exact-mesh": "tab:green",
-           "probes": "tab:purple", "downward-faces": "tab:orange", "sub-texel": "tab:cyan", "lod": "tab:brown"}
+           "probes": "tab:purple", "downward-faces": "tab:orange", "sub-texel": "tab:cyan", "lod": "tab:brown",
+           "tangent-plane": "tab:olive", "fitted-plane": "tab:pink"}
 FLOOR = 1e-10  # exact methods sit at rounding level (1e-12 %): drawn at this floor
 
 
@@ -20,8 +22,11 @@ def read(path):
 
 
 def configs(rows):
+    """Flat-water configurations (rows without a `water` column are flat: files written before it existed)."""
     out = OrderedDict()
     for r in rows:
+        if r.get("water", "flat") != "flat":
+            continue
         k = (r["shape"], r["method"], int(r["texture"]), r["variant"])
         c = out.setdefault(k, {"vol": 0.0, "cob": 0.0, "ns": [], "tri": int(r["triangles"])})
         c["vol"] = max(c["vol"], float(r["volume_error_pct"]))
@@ -35,6 +40,7 @@ def configs(rows):
 def pareto(d, key, title, fname):
     cf = configs(read(os.path.join(d, "speed_vs_error.csv")))
     shapes = list(OrderedDict.fromkeys(k[0] for k in cf))
+    if not shapes: return  # no flat rows (e.g. --parts waves)
     cols = min(4, len(shapes)); rows = math.ceil(len(shapes) / cols)
     fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.6 * rows), squeeze=False)
     for ax, s in zip(axes.flat, shapes):
@@ -61,6 +67,41 @@ def pareto(d, key, title, fname):
     fig.suptitle(f"{title} against time (exact methods drawn at {FLOOR:g} %); labels: texture N", fontsize=10)
     fig.tight_layout()
     fig.savefig(os.path.join(d, fname), dpi=110)
+    plt.close(fig)
+
+
+def pareto_waves(d):
+    """The wave rows: worst volume error against the mean time of the hydrostatics alone, one panel per shape and sea."""
+    rows = [r for r in read(os.path.join(d, "speed_vs_error.csv")) if r.get("water", "flat") != "flat"]
+    if not rows: return
+    cf = OrderedDict()
+    for r in rows:
+        k = (r["shape"], r["water"], r["method"], r["variant"])
+        c = cf.setdefault(k, {"vol": 0.0, "ns": []})
+        c["vol"] = max(c["vol"], float(r["volume_error_pct"]))
+        if r["ns_hydrostatics"]: c["ns"].append(float(r["ns_hydrostatics"]))
+    groups = list(OrderedDict.fromkeys((k[0], k[1]) for k in cf))
+    cols = min(3, len(groups)); nrows = math.ceil(len(groups) / cols)
+    fig, axes = plt.subplots(nrows, cols, figsize=(4.2 * cols, 3.6 * nrows), squeeze=False)
+    for ax, (shape, water) in zip(axes.flat, groups):
+        for k, c in cf.items():
+            if (k[0], k[1]) != (shape, water) or not c["ns"]: continue
+            method = k[2]
+            mk = "*" if method == "default" else ("s" if method == "exact-mesh" else "^")
+            ax.scatter([sum(c["ns"]) / len(c["ns"])], [max(c["vol"], FLOOR)], marker=mk,
+                       s=90 if method == "default" else 30, color=COLOURS.get(method, "grey"),
+                       label=method + (" " + k[3] if k[3] and method == "probes" else ""), zorder=3)
+        ax.set_xscale("log"); ax.set_yscale("log")
+        ax.set_title(f"{shape} in {water}", fontsize=9)
+        ax.set_xlabel("ns per hydrostatics (drag off, 1 thread)", fontsize=8)
+        ax.set_ylabel("worst volume error, % of V", fontsize=8)
+        ax.tick_params(labelsize=7)
+        ax.grid(True, which="major", alpha=0.3)
+    for ax in list(axes.flat)[len(groups):]: ax.axis("off")
+    axes.flat[0].legend(fontsize=6, loc="lower left")
+    fig.suptitle("Waves: worst volume error against time (reference: tests/oracles/WaveOracle)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, "pareto_waves.png"), dpi=110)
     plt.close(fig)
 
 
@@ -122,6 +163,7 @@ if __name__ == "__main__":
     if os.path.exists(os.path.join(d, "speed_vs_error.csv")):
         pareto(d, "vol", "worst submerged-volume error, % of V", "pareto_volume.png")
         pareto(d, "cob", "worst centre-of-buoyancy error, % of diagonal", "pareto_cob.png")
+        pareto_waves(d)
     fig9(d)
     scaling(d)
     print("plots written to", d)

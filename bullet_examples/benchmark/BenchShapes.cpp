@@ -3,6 +3,7 @@
 #include <BulletBuoyancy/mesh/MeshImport.h>
 #include <BulletBuoyancy/mesh/MeshRepair.h>
 #include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <cmath>
 #include <cstdio>
@@ -49,6 +50,28 @@ TriangleMesh loadBoatHull() {
     TriangleMesh mesh = importMeshFile(path);
     prepareMesh(mesh, path);
     return mesh;
+}
+
+TriangleMesh loadLowPolyHull() {
+    const std::string path = std::string(BUOYANCY_BENCH_SOURCE_DIR) + "/bullet_examples/models/hull_lowpoly.obj";
+    TriangleMesh mesh = importMeshFile(path);
+    prepareMesh(mesh, path);
+    return mesh;
+}
+
+std::vector<BenchShape> waveBenchShapes(std::vector<std::string>& warnings) {
+    std::vector<BenchShape> shapes;
+    shapes.push_back({"box", "makeBoxMesh(2, 0.6, 1)", makeBoxMesh(2.0, 0.6, 1.0)});
+    // A log: the cylinder along y turned to lie along x ((x, y, z) -> (y, -x, z), a rotation: still outward).
+    TriangleMesh log = makeCylinderMesh(0.4, 3.0, 16);
+    for (Eigen::Vector3d& v : log.vertices) v = Eigen::Vector3d(v.y(), -v.x(), v.z());
+    shapes.push_back({"cylinder", "makeCylinderMesh(0.4, 3, 16) lying along x", std::move(log)});
+    try {
+        shapes.push_back({"hull", "bullet_examples/models/hull_lowpoly.obj", loadLowPolyHull()});
+    } catch (const std::exception& e) {
+        warnings.push_back(std::string("hull left out: ") + e.what());
+    }
+    return shapes;
 }
 
 std::vector<BenchShape> benchShapes(bool quick, std::vector<std::string>& warnings) {
@@ -107,6 +130,42 @@ std::vector<BenchPose> benchPoses(const TriangleMesh& mesh, const std::vector<do
             poses.push_back(p);
         }
     }
+    return poses;
+}
+
+std::vector<BenchPose> waveBenchPoses(const TriangleMesh& mesh, const btWaterSurface& water,
+                                      const std::vector<double>& times, const std::vector<double>& offsetFractions,
+                                      const std::vector<double>& heelDegrees) {
+    Eigen::Vector3d lo = mesh.vertices.front(), hi = lo;
+    for (const auto& v : mesh.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    const Eigen::Vector3d centre = 0.5 * (lo + hi);
+    std::vector<BenchPose> poses;
+    for (std::size_t i = 0; i < times.size(); ++i)
+        for (std::size_t j = 0; j < offsetFractions.size(); ++j) {
+            const double heel = heelDegrees.empty() ? 0.0 : heelDegrees[(i + j) % heelDegrees.size()];
+            const Eigen::Matrix3d R = Eigen::AngleAxisd(heel * M_PI / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+            double ymin = 1e300, ymax = -1e300;
+            for (const auto& v : mesh.vertices) {
+                const double y = (R * (v - centre)).y();
+                ymin = std::min(ymin, y);
+                ymax = std::max(ymax, y);
+            }
+            const double t = times[i], o = offsetFractions[j];
+            BenchPose p;
+            char id[80];
+            std::snprintf(id, sizeof id, "t%.2f_dy%.2f_heel%g", t, o, heel);
+            p.id = id;
+            p.heelDegrees = heel;
+            p.time = t;
+            p.offsetFraction = o;
+            // world = R (x − centre) + (0, η(0, 0, t) + o·H, 0): the heeled bounding-box centre over the origin.
+            p.pose.linear() = R;
+            p.pose.translation() = -R * centre + Eigen::Vector3d(0, water.height(0.0, 0.0, t) + o * (ymax - ymin), 0);
+            poses.push_back(p);
+        }
     return poses;
 }
 

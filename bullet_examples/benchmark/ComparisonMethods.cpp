@@ -1,5 +1,6 @@
 #include "benchmark/ComparisonMethods.h"
 
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
@@ -214,15 +215,22 @@ ComparisonResult downwardFaceHydrostatics(const FaceSet& fs, const Eigen::Isomet
 }
 
 ComparisonAction::ComparisonAction(btRigidBody* body, const ProbeSet* probes, const FaceSet* faces,
-                                   const btWaterSurface* water, const Eigen::Isometry3d& meshInCom, double rho, double g)
-    : m_body(body), m_probes(probes), m_faces(faces), m_water(water), m_meshInCom(meshInCom), m_rho(rho), m_g(g) {
+                                   const btWaterSurface* water, const Eigen::Isometry3d& meshInCom, double rho, double g,
+                                   btBuoyancyWorld* clock, bool drag)
+    : m_body(body), m_probes(probes), m_faces(faces), m_water(water), m_meshInCom(meshInCom), m_rho(rho), m_g(g),
+      m_clock(clock), m_drag(drag) {
     if (!body || !water || (!probes == !faces)) throw std::invalid_argument("ComparisonAction: bad arguments");
     m_ws.resize(probes ? probes->size() : faces->size());
 }
 
-void ComparisonAction::updateAction(btCollisionWorld*, btScalar dtStep) {
+void ComparisonAction::updateAction(btCollisionWorld* world, btScalar dtStep) {
     const double dt = double(dtStep);
-    m_time += dt;
+    if (m_clock) {
+        m_clock->beginSubstepIfNew(m_lastSubstep, dt, world);
+        m_time = m_clock->getTime();
+    } else {
+        m_time += dt;
+    }
     const btTransform& tr = m_body->getWorldTransform();
     Eigen::Isometry3d com = Eigen::Isometry3d::Identity();
     for (int i = 0; i < 3; ++i)
@@ -232,6 +240,12 @@ void ComparisonAction::updateAction(btCollisionWorld*, btScalar dtStep) {
     const Eigen::Vector3d c = com.translation();
     m_last = m_probes ? probeHydrostatics(*m_probes, pose, *m_water, m_time, m_rho, m_g, c, m_ws)
                       : downwardFaceHydrostatics(*m_faces, pose, *m_water, m_time, m_rho, m_g, c, m_ws);
+    if (!m_drag) {
+        const Eigen::Vector3d J = m_last.force * dt, L = m_last.torque * dt;
+        m_body->applyCentralImpulse(btVector3(btScalar(J.x()), btScalar(J.y()), btScalar(J.z())));
+        m_body->applyTorqueImpulse(btVector3(btScalar(L.x()), btScalar(L.y()), btScalar(L.z())));
+        return;
+    }
     // Drag (design.md 2.6) on the wetted elements.
     const std::size_t n = m_ws.wx.size();
     m_water->velocities(m_ws.wx.data(), m_ws.wy.data(), m_ws.wz.data(), n, m_time, m_ws.ux.data(), m_ws.uy.data(),

@@ -17,9 +17,11 @@
 #include <BulletDynamics/Dynamics/btActionInterface.h>
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <string>
 #include <vector>
 
+class btBuoyancyWorld;
 class btRigidBody;
 class btWaterSurface;
 
@@ -85,8 +87,13 @@ ComparisonResult downwardFaceHydrostatics(const FaceSet& faces, const Eigen::Iso
 class ComparisonAction : public btActionInterface {
 public:
     /// Exactly one of probes/faces is non-null. The mesh sits at `meshInCom` in the body's COM frame.
+    /// @param rho    water density, kg/m³   @param g  gravity, m/s²
+    /// @param clock  optional: the water's time is this buoyancy world's (advanced per substep as btBuoyancyAction
+    ///               does); nullptr: the action's own clock, from 0 by dt per call
+    /// @param drag   false: buoyancy and its impulses only (the hydrostatics-only timing of the wave rows)
     ComparisonAction(btRigidBody* body, const ProbeSet* probes, const FaceSet* faces, const btWaterSurface* water,
-                     const Eigen::Isometry3d& meshInCom, double rho = 1000.0, double g = 9.81);
+                     const Eigen::Isometry3d& meshInCom, double rho = 1000.0, double g = 9.81,
+                     btBuoyancyWorld* clock = nullptr, bool drag = true);
     void updateAction(btCollisionWorld* world, btScalar dt) override;
     void debugDraw(btIDebugDraw*) override {}
     /// Result of the last substep.
@@ -99,6 +106,9 @@ private:
     const btWaterSurface* m_water;
     Eigen::Isometry3d m_meshInCom;
     double m_rho, m_g, m_time = 0;
+    btBuoyancyWorld* m_clock;
+    std::uint64_t m_lastSubstep = 0;
+    bool m_drag;
     ComparisonWorkspace m_ws;
     ComparisonResult m_last;
 };

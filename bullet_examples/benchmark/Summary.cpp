@@ -36,17 +36,114 @@ bool isDefaultsOwn(const ConfigStats& c, const ConfigStats& def) {
     return own == def.variant;
 }
 
+std::string ratio(double num, double den) { return den > 0 ? fmt("%.3g", num / den) : std::string("—"); }
+
+/// The wave rows (and the flat rows of the same shapes' default) per shape and water: a table, the verdicts, and
+/// the box in swell against the tangent plane.
+std::string wavesMarkdown(const std::vector<ConfigStats>& all) {
+    std::vector<std::pair<std::string, std::string>> groups;  // (shape, water), first-seen order
+    for (const auto& c : all)
+        if (std::find(groups.begin(), groups.end(), std::make_pair(c.shape, c.water)) == groups.end())
+            groups.emplace_back(c.shape, c.water);
+    bool anyWaves = false;
+    for (const auto& g : groups) anyWaves = anyWaves || g.second != "flat";
+    std::ostringstream md;
+    md << "\n## In waves: worst errors over the poses, mean times (wave rows)\n\n";
+    if (!anyWaves) {
+        md << "Not measured in this run (part `waves`).\n";
+        return md.str();
+    }
+    auto find = [&](const std::string& shape, const std::string& water, const std::string& method) -> const ConfigStats* {
+        for (const auto& c : all)
+            if (c.shape == shape && c.water == water && c.method == method) return &c;
+        return nullptr;
+    };
+    md << "Errors against the wave reference (tests/oracles/WaveOracle); CoB moment = |ΔC_B| V_sub / (V · diagonal); "
+          "ns/body-substep with drag on, ns hydrostatics with drag off (one thread).\n\n"
+       << "| shape | water | configuration | poses | volume err % | CoB err % | CoB moment err | torque err % | "
+          "ns/body-substep | ns hydrostatics | hydrostatics / default |\n"
+       << "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const auto& g : groups) {
+        if (g.second == "flat") continue;
+        const ConfigStats* def = find(g.first, g.second, "default");
+        for (const auto& c : all) {
+            if (c.shape != g.first || c.water != g.second) continue;
+            md << "| " << c.shape << " | " << c.water << " | " << label(c) << " | " << c.poses << " | "
+               << fmt("%.2g", c.worstVolumePct) << " | " << fmt("%.2g", c.worstCobPct) << " | "
+               << fmt("%.2g", c.worstCobMoment) << " | " << fmt("%.2g", c.worstTorquePct) << " | "
+               << fmt("%.0f", c.meanNs) << " | "
+               << (std::isfinite(c.meanNsHydrostatics) ? fmt("%.0f", c.meanNsHydrostatics) : std::string("")) << " | "
+               << (def && std::isfinite(c.meanNsHydrostatics) ? ratio(c.meanNsHydrostatics, def->meanNsHydrostatics)
+                                                               : std::string(""))
+               << " |\n";
+        }
+    }
+
+    md << "\n## Per shape and water: the default against the bars (volume ≤ " << fmt("%g", kVolumeBarPct)
+       << " % of V, CoB first moment ≤ " << fmt("%g", kCobMomentBar)
+       << "), and anything at least as accurate and > 10 % faster\n\n";
+    bool barsHold = true, nothingFaster = true;
+    for (const auto& g : groups) {
+        const ConfigStats* def = find(g.first, g.second, "default");
+        if (!def) continue;
+        const bool volOk = def->worstVolumePct <= kVolumeBarPct, cobOk = def->worstCobMoment <= kCobMomentBar;
+        barsHold = barsHold && volOk && cobOk;
+        std::vector<std::string> beat;
+        for (const auto& c : all) {
+            if (c.shape != g.first || c.water != g.second || isDefaultsOwn(c, *def)) continue;
+            if (!(c.worstVolumePct <= def->worstVolumePct && c.worstCobPct <= def->worstCobPct)) continue;
+            if (c.meanNs * 1.1 < def->meanNs)
+                beat.push_back(label(c) + " (" + fmt("%.2f", c.meanNs / def->meanNs) + "× the body-substep time)");
+            else if (std::isfinite(c.meanNsHydrostatics) && std::isfinite(def->meanNsHydrostatics) &&
+                     c.meanNsHydrostatics * 1.1 < def->meanNsHydrostatics)
+                beat.push_back(label(c) + " (" + fmt("%.2f", c.meanNsHydrostatics / def->meanNsHydrostatics) +
+                               "× the hydrostatics time)");
+        }
+        nothingFaster = nothingFaster && beat.empty();
+        md << "- " << g.first << " in " << g.second << " (default = " << def->variant << ", " << def->poses
+           << " poses): worst volume error " << fmt("%.2g", def->worstVolumePct) << " % (" << (volOk ? "within" : "ABOVE")
+           << " the bar), worst CoB first-moment error " << fmt("%.2g", def->worstCobMoment) << " ("
+           << (cobOk ? "within" : "ABOVE") << " the bar); "
+           << (beat.empty() ? "nothing measured is at least as accurate and > 10 % faster" : "as accurate and faster:");
+        for (std::size_t i = 0; i < beat.size(); ++i) md << (i ? "; " : " ") << beat[i];
+        md << '\n';
+    }
+    md << "\nThe default within the bars on every shape and water: " << (barsHold ? "holds" : "does not hold")
+       << ". Nothing at least as accurate and > 10 % faster, on every shape and water: "
+       << (nothingFaster ? "holds" : "does not hold") << ".\n";
+
+    // The Jolt-style tangent plane against the default on the 12-triangle box in the swell (same run).
+    const ConfigStats* def = find("box", "swell", "default");
+    const ConfigStats* tan = find("box", "swell", "tangent-plane");
+    if (def && tan) {
+        md << "\n### Box (12 triangles) in swell: the default against tangent-plane (same run)\n\n"
+           << "- hydrostatics alone: default " << fmt("%.0f", def->meanNsHydrostatics) << " ns / tangent-plane "
+           << fmt("%.0f", tan->meanNsHydrostatics) << " ns = " << ratio(def->meanNsHydrostatics, tan->meanNsHydrostatics)
+           << " (body-substep with drag: " << fmt("%.0f", def->meanNs) << " / " << fmt("%.0f", tan->meanNs) << " ns = "
+           << ratio(def->meanNs, tan->meanNs) << ")\n"
+           << "- worst volume error: default " << fmt("%.2g", def->worstVolumePct) << " % / tangent-plane "
+           << fmt("%.2g", tan->worstVolumePct) << " % = " << ratio(def->worstVolumePct, tan->worstVolumePct) << "\n"
+           << "- worst CoB first-moment error: default " << fmt("%.2g", def->worstCobMoment) << " / tangent-plane "
+           << fmt("%.2g", tan->worstCobMoment) << " = " << ratio(def->worstCobMoment, tan->worstCobMoment) << "\n"
+           << "- worst torque error: default " << fmt("%.2g", def->worstTorquePct) << " % / tangent-plane "
+           << fmt("%.2g", tan->worstTorquePct) << " % = " << ratio(def->worstTorquePct, tan->worstTorquePct) << "\n";
+    }
+    return md.str();
+}
+
 }  // namespace
 
 std::vector<ConfigStats> reduceConfigs(const std::vector<SpeedErrorRow>& rows) {
     std::vector<ConfigStats> out;
-    std::map<std::string, std::pair<std::size_t, int>> index;  // key -> (position, pose count)
+    std::map<std::string, std::pair<std::size_t, int>> index;  // key -> (position, rows with ns_hydrostatics)
     for (const SpeedErrorRow& r : rows) {
-        const std::string key = r.shape + "|" + r.method + "|" + std::to_string(r.texture) + "|" + r.variant;
+        const std::string key =
+            r.shape + "|" + r.water + "|" + r.method + "|" + std::to_string(r.texture) + "|" + r.variant;
         auto it = index.find(key);
         if (it == index.end()) {
             ConfigStats c;
             c.shape = r.shape;
+            c.water = r.water;
             c.method = r.method;
             c.variant = r.variant;
             c.triangles = r.triangles;
@@ -59,14 +156,24 @@ std::vector<ConfigStats> reduceConfigs(const std::vector<SpeedErrorRow>& rows) {
         c.worstVolumePct = std::max(c.worstVolumePct, r.volume_error_pct);
         c.worstCobPct = std::max(c.worstCobPct, r.cob_error_pct);
         c.worstTorquePct = std::max(c.worstTorquePct, r.torque_error_pct);
-        const int n = ++it->second.second;
+        c.worstCobMoment = std::max(c.worstCobMoment, r.cob_error_pct / 100.0 * r.submerged_fraction);
+        const int n = ++c.poses;
         c.meanNs += (r.ns_per_body_substep - c.meanNs) / n;
+        if (std::isfinite(r.ns_hydrostatics)) {
+            const int h = ++it->second.second;
+            c.meanNsHydrostatics += (r.ns_hydrostatics - c.meanNsHydrostatics) / h;
+        }
     }
+    for (const auto& kv : index)
+        if (kv.second.second == 0) out[kv.second.first].meanNsHydrostatics = std::nan("");
     return out;
 }
 
 std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::vector<ScalingRow>& scaling) {
-    const std::vector<ConfigStats> all = reduceConfigs(rows);
+    const std::vector<ConfigStats> everything = reduceConfigs(rows);
+    std::vector<ConfigStats> all;  // the flat-water configurations: the headline and the speed goals
+    for (const auto& c : everything)
+        if (c.water == "flat") all.push_back(c);
     std::vector<std::string> shapes;
     for (const auto& c : all)
         if (std::find(shapes.begin(), shapes.end(), c.shape) == shapes.end()) shapes.push_back(c.shape);
@@ -140,6 +247,8 @@ std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::v
     }
     if (p2Shapes == 0) md << "Not measured in this run (needs texel-centre 1024; `buoyancy bench` without --quick).\n";
     else md << "\nCost ≤ 1/200 of texel-centre 1024², overall: " << (p2 ? "holds" : "does not hold") << "\n";
+
+    md << wavesMarkdown(everything);
 
     md << "\n## 1,000 bodies in real time on 2 cores\n\n";
     const ScalingRow* p3 = nullptr;

@@ -26,23 +26,26 @@ void addBenchCommand(CLI::App& app, BenchOptions& options) {
     CLI::App* b = app.add_subcommand("bench", "Speed against error benchmark: CSVs and summary.md in DIR");
     b->add_flag("--quick", options.quick, "Reduced set for a smoke test (well under 30 s)");
     b->add_option("--out", options.out, "Output folder (created when missing)");
-    b->add_option("--parts", options.parts, "Parts to run, comma-separated: speed, fig9, scaling, lod, opencl");
+    b->add_option("--parts", options.parts,
+                  "Parts to run, comma-separated: speed (flat water), waves (speed against error in waves), fig9, "
+                  "scaling, lod, opencl");
 }
 
 int runBench(const BenchOptions& o) {
     using namespace buoyancy::bench;
     bool speed = false, fig9 = false, scaling = false, opencl = false;
-    bool lod = false;
+    bool lod = false, waves = false;
     {
         std::stringstream ss(o.parts);
         std::string p;
         while (std::getline(ss, p, ',')) {
             if (p == "speed") speed = true;
+            else if (p == "waves") waves = true;
             else if (p == "fig9") fig9 = true;
             else if (p == "scaling") scaling = true;
             else if (p == "opencl") opencl = true;
             else if (p == "lod") lod = true;
-            else throw UsageError("--parts: unknown part '" + p + "' (speed, fig9, scaling, lod, opencl)");
+            else throw UsageError("--parts: unknown part '" + p + "' (speed, waves, fig9, scaling, lod, opencl)");
         }
     }
     namespace fs = std::filesystem;
@@ -55,28 +58,41 @@ int runBench(const BenchOptions& o) {
         << std::thread::hardware_concurrency() << " hardware threads)\n";
 
     // A line per part done (the parts' own lines go to stderr too, so no bar that they would break).
-    const int parts = int(speed) + int(fig9) + int(scaling) + int(opencl) + int(lod);
+    const int parts = int(speed) + int(waves) + int(fig9) + int(scaling) + int(opencl) + int(lod);
     ProgressReporter progress("bench", parts, " parts", ProgressReporter::Mode::Lines);
     int partsDone = 0;
     std::vector<SpeedErrorRow> rows;
+    SpeedErrorOptions speedOptions;
+    if (o.quick) {
+        speedOptions.textures = {32, 128};
+        speedOptions.drafts = {0.3, 0.7};
+        speedOptions.heels = {0, 30};
+        speedOptions.hullProbes = {32};
+        speedOptions.gridProbes = {64};
+        speedOptions.timing.minBatchSeconds = 2e-4;
+        speedOptions.timing.batches = 2;
+        speedOptions.waveTimes = {1.0, 3.0};
+        speedOptions.waveOffsets = {-0.2, 0.2};
+        speedOptions.waveGridProbes = {};
+        speedOptions.oracleWaterlineLevels = 3;
+    }
     if (speed) {
         std::vector<std::string> warnings;
         const std::vector<BenchShape> shapes = benchShapes(o.quick, warnings);
         for (const auto& w : warnings) log << "warning: " << w << '\n';
-        SpeedErrorOptions so;
-        if (o.quick) {
-            so.textures = {32, 128};
-            so.drafts = {0.3, 0.7};
-            so.heels = {0, 30};
-            so.hullProbes = {32};
-            so.gridProbes = {64};
-            so.timing.minBatchSeconds = 2e-4;
-            so.timing.batches = 2;
-        }
-        rows = runSpeedVsError(shapes, so, log);
-        writeSpeedVsErrorCsv((fs::path(o.out) / "speed_vs_error.csv").string(), rows);
+        rows = runSpeedVsError(shapes, speedOptions, log);
+        progress.update(++partsDone);
     }
-    progress.update(++partsDone);
+    if (waves) {  // the wave rows of the same table (docs/benchmarks/README.md, "Wave rows")
+        std::vector<std::string> warnings;
+        const std::vector<BenchShape> shapes = waveBenchShapes(warnings);
+        for (const auto& w : warnings) log << "warning: " << w << '\n';
+        const auto tw = std::chrono::steady_clock::now();
+        for (const SpeedErrorRow& r : runSpeedVsErrorWaves(shapes, benchSeas(), speedOptions, log)) rows.push_back(r);
+        log << "waves: " << std::chrono::duration<double>(std::chrono::steady_clock::now() - tw).count() << " s\n";
+        progress.update(++partsDone);
+    }
+    if (speed || waves) writeSpeedVsErrorCsv((fs::path(o.out) / "speed_vs_error.csv").string(), rows);
     if (fig9) {
         Fig9Options fo;
         if (o.quick) {

@@ -1,13 +1,15 @@
 #pragma once
 /// @file BenchCommand.h
-/// `buoyancy bench [--quick] [--out DIR]`: the benchmark. Writes into DIR
-///   speed_vs_error.csv   every method × texture × shape × pose: errors against the exact clip and ns per
-///                        body-substep (drag on, one thread),
+/// `buoyancy bench [--quick] [--out DIR] [--parts LIST]`: the benchmark. Writes into DIR
+///   speed_vs_error.csv   every method × texture × shape × pose in flat water (part speed): errors against the exact
+///                        clip and ns per body-substep (drag on, one thread); and the wave rows (part waves): the wave
+///                        methods × box, cylinder, hull × the swell and chop seas × poses near the local surface,
+///                        errors against the wave reference, ns per body-substep and ns of the hydrostatics alone,
 ///   fig9_sphere_volume.csv  the paper's Fig. 9 (sphere R = 0.5, volume against depth),
 ///   scaling.csv          1…1000 bodies in Gerstner waves, 1 and 2 threads (and "no-lod" rows),
 ///   waves_lod.csv, drag_lod.csv  the error the level of detail adds and the time it saves (part lod),
 ///   summary.md           the headline table and goals P1–P3 as measured (also printed).
-/// --quick runs a reduced set (3 shapes, 2 textures, 4 poses, ≤ 100 bodies) in well under 30 s; plots are
+/// --quick runs a reduced set (3 shapes, 2 textures, 4 poses, 4 wave poses, ≤ 100 bodies) in well under 30 s; plots are
 /// made from the CSVs by scripts/bench_plots.py (scripts/bench.sh runs both).
 
 #include <CLI/CLI.hpp>
@@ -20,7 +22,8 @@ namespace buoyancy::cli {
 struct BenchOptions {
     bool quick = false;            ///< the reduced, fast set (smoke test)
     std::string out = "bench-results"; ///< output folder (created when missing)
-    std::string parts = "speed,fig9,scaling,lod"; ///< which parts to run, comma-separated (also: opencl)
+    /// which parts to run, comma-separated: speed (flat water), waves (the wave rows), fig9, scaling, lod (also: opencl)
+    std::string parts = "speed,waves,fig9,scaling,lod";
 };
 
 /// Register the `bench` subcommand on `app`.

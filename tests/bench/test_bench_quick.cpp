@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -62,16 +63,39 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
         const Table t = readCsv(o.out + "/speed_vs_error.csv");
         const std::vector<std::string> header = {"shape", "triangles", "method", "texture", "variant", "samples", "pose",
                                                  "volume_error_pct", "cob_error_pct", "torque_error_pct",
-                                                 "ns_per_body_substep"};
+                                                 "ns_per_body_substep", "water", "ns_hydrostatics",
+                                                 "submerged_fraction"};
         REQUIRE(t[0] == header);
         REQUIRE(t.size() > 20);
         const int cm = column(t, "method"), ct = column(t, "texture"), cv = column(t, "volume_error_pct"),
                   cc = column(t, "cob_error_pct"), cq = column(t, "torque_error_pct"), cn = column(t, "ns_per_body_substep"),
-                  cs = column(t, "samples"), cshape = column(t, "shape");
+                  cs = column(t, "samples"), cshape = column(t, "shape"), cw = column(t, "water"),
+                  ch = column(t, "ns_hydrostatics"), cf = column(t, "submerged_fraction");
         std::set<std::string> methods, shapes;
+        std::map<std::string, std::set<std::string>> waveMethods;  // "shape water" -> methods
         for (std::size_t i = 1; i < t.size(); ++i) {
             const auto& r = t[i];
             REQUIRE(r.size() == header.size());
+            const std::string& water = r[cw];
+            REQUIRE((water == "flat" || water == "swell" || water == "chop"));
+            CHECK(num(r, cf) >= 0);
+            CHECK(num(r, cf) <= 1.0 + 1e-9);
+            if (water != "flat") {
+                // Wave rows: both times measured; errors finite and within the body (no accuracy asserted: the
+                // default's wave evaluation is measured, not pinned).
+                waveMethods[r[cshape] + " " + water].insert(r[cm]);
+                CHECK(std::isfinite(num(r, ch)));
+                CHECK(num(r, ch) > 0);
+                CHECK(num(r, cn) > 0);
+                CHECK(r[column(t, "pose")].rfind("t", 0) == 0);
+                for (int c : {cv, cc, cq}) {
+                    CHECK(std::isfinite(num(r, c)));
+                    CHECK(num(r, c) >= 0);
+                    CHECK(num(r, c) < 100);
+                }
+                continue;
+            }
+            CHECK(r[ch].empty());  // not measured in flat water
             methods.insert(r[cm]);
             shapes.insert(r[cshape]);
             for (int c : {cv, cc, cq}) {
@@ -103,6 +127,15 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
             CHECK(methods.count(m) == 1);
         CHECK(shapes.count("box") == 1);
         CHECK(shapes.count("sphere") == 1);
+        // Wave rows: the three wave shapes in both seas, each with the default and the plane methods.
+        for (const char* shape : {"box", "cylinder", "hull"})
+            for (const char* water : {"swell", "chop"}) {
+                INFO(shape << " in " << water);
+                const auto& m = waveMethods[std::string(shape) + " " + water];
+                for (const char* method : {"default", "exact-mesh", "tangent-plane", "fitted-plane", "probes", "downward-faces"})
+                    CHECK(m.count(method) == 1);
+            }
+        CHECK(waveMethods.size() == 6);
     }
 
     {  // "fig9_sphere_volume.csv: the analytic column is the spherical cap, AQUAS over-counts a submerged sphere" (one bench run checked in blocks: SECTIONs would re-run it)
@@ -178,6 +211,15 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
         }
     }
     CHECK(std::filesystem::exists(o.out + "/summary.md"));
+    {  // summary.md: the verdicts per shape and water, and the box in swell against the tangent plane
+        std::ifstream f(o.out + "/summary.md");
+        const std::string md((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+        CHECK(md.find("## In waves") != std::string::npos);
+        for (const char* line : {"- box in swell", "- box in chop", "- cylinder in swell", "- cylinder in chop",
+                                 "- hull in swell", "- hull in chop", "- box in flat"})
+            CHECK(md.find(line) != std::string::npos);
+        CHECK(md.find("### Box (12 triangles) in swell: the default against tangent-plane") != std::string::npos);
+    }
     std::filesystem::remove_all(o.out);
 }
 
