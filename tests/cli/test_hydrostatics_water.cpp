@@ -62,9 +62,8 @@ TEST_CASE("hydrostatics --water: a box in a single Airy wave matches the closed 
         const auto j = runJson({"hydrostatics", obj, "--translate", std::to_string(shiftX), "0", "0", "--water", water,
                                 "--time", std::to_string(t), "--json"});
         INFO("t = " << t << " s, closed form V = " << expected << " m^3");
-        // 2 % of V: the exact-mesh default cuts each triangle with the plane through its corners' water heights,
-        // so a box face two triangles long sees the wave as straight lines between its corners.
-        CHECK(j["submerged"]["volume"].get<double>() == Approx(expected).epsilon(0.02));
+        // 0.1 % of the box's volume: the bar of the exact-mesh default on smooth waves (design.md 2.5).
+        CHECK(std::abs(j["submerged"]["volume"].get<double>() - expected) <= 1e-3 * 2.0);
         CHECK(j["submerged"]["force"][1].get<double>() ==
               Approx(1000 * g * j["submerged"]["volume"].get<double>()).epsilon(0.02));
         CHECK(j["water"]["type"] == "gerstner");

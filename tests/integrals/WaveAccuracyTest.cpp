@@ -15,7 +15,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <chrono>
 #include <random>
 
@@ -125,13 +124,13 @@ Worst measure(const Shape& s, const std::vector<btGerstnerWave>& sea, int poses,
 
 }  // namespace
 
-TEST_CASE("waves: the default evaluation of low-poly shapes against the divergence-theorem reference", "[waves][accuracy]") {
+TEST_CASE("waves: the default evaluation of low-poly shapes against the divergence-theorem reference",
+          "[waves][accuracy][slow]") {
     const std::pair<const char*, std::vector<btGerstnerWave>> seas[] = {{"swell", swell()}, {"chop", chop()}};
     for (const Shape& s : lowPolyShapes())
         for (const auto& sea : seas)
-            for (bool dragOn : {false, true}) {
-                static const int kPoses = std::getenv("BB_POSES") ? std::atoi(std::getenv("BB_POSES")) : 20;
-                const Worst w = measure(s, sea.second, kPoses, 7u, dragOn);
+            for (bool dragOn : {false, true}) {  // drag on: the wave patch the action builds for its drag clusters
+                const Worst w = measure(s, sea.second, 10, 7u, dragOn);
                 std::printf("  %-13s %-6s drag %-3s  volume %.4f %%  first moment %.2e V·D  force %.4f %% of ρgV\n", s.name,
                             sea.first, dragOn ? "on" : "off", w.volumePct, w.firstMoment, w.forcePct);
                 INFO(s.name << " in " << sea.first << (dragOn ? " (drag on: patch)" : ""));
