@@ -6,7 +6,9 @@
 #include <BulletBuoyancy/integrals/Hydrostatics.h>
 #include <BulletBuoyancy/integrals/MeshMomentTree.h>
 #include <BulletBuoyancy/integrals/WaterPatch.h>
+#include <BulletBuoyancy/water/btFftOceanSurface.h>
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btGridWaterSurface.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 #include "oracles/OracleMeshes.h"
 #include "oracles/PolyhedralOracle.h"
@@ -58,14 +60,17 @@ std::vector<Shape> lowPolyShapes() {
 /// the action would build (btBuoyancyWaterPatchNodes; none when it would have as many nodes as the mesh has vertices
 /// plus drag clusters).
 HydrostaticsResult defaultEvaluation(const MeshMomentTree& tree, const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
-                                     const btGerstnerWaterSurface& water, double t, const Eigen::Vector3d& com,
+                                     const btWaterSurface& water, double t, const Eigen::Vector3d& com,
                                      double radius, bool dragOn, WaterPatch& patch, btWaterQueryCache& cache) {
     const btBuoyancySettings settings;
     const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(settings, radius, water.shortestWavelength()));
-    const std::size_t points = mesh.vertices.size() + (dragOn ? std::size_t(settings.dragClusters) : 0);
+    // The points the patch would stand for: one height per vertex and per edge, and the drag clusters.
+    const std::size_t points =
+        mesh.vertices.size() + tree.edges.edges.size() + (dragOn ? std::size_t(settings.dragClusters) : 0);
     const Eigen::Vector3d c = pose * Eigen::Vector3d::Zero();
     const WaterPatch* p = nullptr;
-    if (nodes * nodes < points) {
+    // The action builds a patch only over Gerstner water (whose query is an iterative solve).
+    if (dynamic_cast<const btGerstnerWaterSurface*>(&water) && nodes * nodes < points) {
         patch.build(water, c.x(), c.z(), radius, t, int(nodes), cache);
         p = &patch;
     }
@@ -76,8 +81,25 @@ struct Worst {
     double volumePct = 0, firstMoment = 0, forcePct = 0;
 };
 
-Worst measure(const Shape& s, const std::vector<btGerstnerWave>& sea, int poses, unsigned seed, bool dragOn) {
-    const btGerstnerWaterSurface water(sea);
+/// Oracle settings for a surface: Gerstner sub-triangles ≤ λ_min / 40; water bilinear over a lattice: clipped to its
+/// cells, sub-triangles ≤ a tenth of the spacing.
+WaveOracleOptions oracleOptionsFor(const btWaterSurface& water, double t, double D) {
+    WaveOracleOptions o;
+    btWaterLattice lattice;
+    if (water.bilinearLattice(t, lattice)) {
+        o.kinkSpacing = lattice.spacingX;
+        o.kinkOriginX = lattice.originX;
+        o.kinkOriginZ = lattice.originZ;
+        o.maxEdge = 0.1 * lattice.spacingX;
+        o.gradientStep = 1e-6;  // central differences inside one cell
+    } else {
+        o.maxEdge = water.shortestWavelength() > 0 ? water.shortestWavelength() / 40.0 : 0.05;
+    }
+    o.maxEdge = std::max(o.maxEdge, 0.01 * D);
+    return o;
+}
+
+Worst measure(const Shape& s, const btWaterSurface& water, int poses, unsigned seed, bool dragOn) {
     const TriangleMesh mesh = toTriangleMesh(s.mesh);
     const MeshMomentTree tree = buildMeshMomentTree(mesh);
     const OracleMoments dry = oracleDryMoments(s.mesh.verts, s.mesh.tris);
@@ -87,8 +109,6 @@ Worst measure(const Shape& s, const std::vector<btGerstnerWave>& sea, int poses,
         hi = hi.cwiseMax(v);
     }
     const double D = (hi - lo).norm(), radius = 0.5 * D, height = hi.y() - lo.y();
-    double hMin = 0, hMax = 0;
-    water.heightBounds(0, 0, 0, 0, 0, hMin, hMax);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> U(-1.0, 1.0);
     WaterPatch patch;
@@ -106,8 +126,9 @@ Worst measure(const Shape& s, const std::vector<btGerstnerWave>& sea, int poses,
         const Eigen::Vector3d com = pose * dry.centroid;
         const HydrostaticsResult h =
             defaultEvaluation(tree, mesh, pose, water, t, com, radius, dragOn, patch, cache);
-        WaveOracleOptions o;
-        o.maxEdge = std::max(water.shortestWavelength() / 40.0, 0.01 * D);
+        double hMin = 0, hMax = 0;
+        water.heightBounds(x - D, z - D, x + D, z + D, t, hMin, hMax);
+        WaveOracleOptions o = oracleOptionsFor(water, t, D);
         o.waterMax = hMax;
         const WaveOracleResult ref =
             waveOracle(oraclePose(s.mesh.verts, pose), s.mesh.tris, [&](double qx, double qz) { return water.height(qx, qz, t); },
@@ -130,7 +151,7 @@ TEST_CASE("waves: the default evaluation of low-poly shapes against the divergen
     for (const Shape& s : lowPolyShapes())
         for (const auto& sea : seas)
             for (bool dragOn : {false, true}) {  // drag on: the wave patch the action builds for its drag clusters
-                const Worst w = measure(s, sea.second, 10, 7u, dragOn);
+                const Worst w = measure(s, btGerstnerWaterSurface(sea.second), 10, 7u, dragOn);
                 std::printf("  %-13s %-6s drag %-3s  volume %.4f %%  first moment %.2e V·D  force %.4f %% of ρgV\n", s.name,
                             sea.first, dragOn ? "on" : "off", w.volumePct, w.firstMoment, w.forcePct);
                 INFO(s.name << " in " << sea.first << (dragOn ? " (drag on: patch)" : ""));
@@ -138,6 +159,85 @@ TEST_CASE("waves: the default evaluation of low-poly shapes against the divergen
                 CHECK(w.firstMoment <= 1e-3);
                 CHECK(w.forcePct <= 0.1);
             }
+}
+
+namespace {
+
+/// A user's height grid: 64 × 64 samples 1 m apart over [−32, 32)², periodic, from three waves (wavelengths 8–32 m,
+/// amplitudes 0.15–0.6 m) plus uniform noise of ±0.05 m, so every cell has its own bilinear twist and slope kinks.
+btGridWaterSurface userGrid() {
+    const int n = 64;
+    std::vector<double> h(std::size_t(n * n));
+    std::mt19937 rng(11u);
+    std::uniform_real_distribution<double> noise(-0.05, 0.05);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const double x = -32.0 + i, z = -32.0 + j;
+            h[std::size_t(j * n + i)] = 0.6 * std::cos(2 * kPi * x / 32.0) + 0.3 * std::sin(2 * kPi * (x + z) / 16.0 + 0.4) +
+                                        0.15 * std::cos(2 * kPi * z / 8.0 + 1.1) + noise(rng);
+        }
+    return btGridWaterSurface(n, n, 1.0, -32.0, -32.0, h, true);
+}
+
+/// An FFT ocean as the example scenes build it (64 samples over 64 m, wind 9 m/s), without choppiness: the height is
+/// the bilinear lookup of its samples.
+btFftOceanSurface fftOcean(double choppiness) {
+    btFftOceanSettings o;
+    o.resolution = 64;
+    o.patchSize = 64.0;
+    o.windSpeed = 9.0;
+    o.windDirectionX = 1.0;
+    o.windDirectionZ = 0.4;
+    o.choppiness = choppiness;
+    o.seed = 3;
+    return btFftOceanSurface(o);
+}
+
+}  // namespace
+
+TEST_CASE("waves: the default evaluation on grid and FFT water against the bilinear reference",
+          "[waves][accuracy][slow]") {
+    const btGridWaterSurface grid = userGrid();
+    const btFftOceanSurface fft = fftOcean(0.0);
+    const btFftOceanSurface choppy = fftOcean(0.4);
+    const std::pair<const char*, const btWaterSurface*> waters[] = {{"grid", &grid}, {"fft", &fft}, {"fft-choppy", &choppy}};
+    for (const Shape& s : lowPolyShapes())
+        for (const auto& water : waters) {
+            const Worst w = measure(s, *water.second, 10, 5u, false);
+            std::printf("  %-13s %-5s  volume %.5f %%  first moment %.2e V·D  force %.5f %% of ρgV\n", s.name,
+                        water.first, w.volumePct, w.firstMoment, w.forcePct);
+            INFO(s.name << " in " << water.first);
+            CHECK(w.volumePct <= 0.1);
+            CHECK(w.firstMoment <= 1e-3);
+            CHECK(w.forcePct <= 0.1);
+        }
+}
+
+TEST_CASE("waves: a box under grid water against the closed form per cell", "[waves][accuracy]") {
+    // Axis-aligned 4 × 1.5 × 1.5 m box (12 triangles), bottom wet and top dry everywhere: V = Σ over the cells its
+    // footprint meets of area × (η at the piece's centre − y_b) (tests/oracles/WaveOracle.h).
+    const btGridWaterSurface grid = userGrid();
+    const OracleMesh box = oracleBox(4.0, 1.5, 1.5);
+    const TriangleMesh mesh = toTriangleMesh(box);
+    const MeshMomentTree tree = buildMeshMomentTree(mesh);
+    std::mt19937 rng(3u);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    double worst = 0;
+    for (int i = 0; i < 20; ++i) {
+        const double x = 20.0 * U(rng), z = 20.0 * U(rng);
+        const Eigen::Vector3d c(x, grid.height(x, z, 0.0) + 0.1 * U(rng), z);
+        double lo = 0, hi = 0;
+        grid.heightBounds(x - 2, z - 0.75, x + 2, z + 0.75, 0.0, lo, hi);
+        if (c.y() - 0.75 >= lo || c.y() + 0.75 <= hi) continue;  // the closed form needs the bottom wet, the top dry
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.translation() = c;
+        const HydrostaticsResult h = treeHydrostatics(tree, mesh, pose, grid, 0.0, kRho, kG, c, nullptr);
+        const double ref = bilinearBoxVolume([&](double qx, double qz) { return grid.height(qx, qz, 0.0); }, -32.0, -32.0,
+                                             1.0, x - 2.0, x + 2.0, z - 0.75, z + 0.75, c.y() - 0.75);
+        worst = std::max(worst, std::abs(h.submerged_volume - ref) / 9.0);
+    }
+    INFO("worst volume error " << worst << " of V");
+    CHECK(worst <= 1e-9);
 }
 
 TEST_CASE("waves: timing of the default evaluation (manual)", "[.timing]") {

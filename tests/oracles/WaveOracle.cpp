@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace buoyancy_test {
 namespace {
@@ -106,7 +107,43 @@ WaveOracleResult waveOracle(const std::vector<Eigen::Vector3d>& verts, const std
     for (const Eigen::Vector3i& t : tris) {
         const Eigen::Vector3d &a = verts[std::size_t(t[0])], &b = verts[std::size_t(t[1])], &c = verts[std::size_t(t[2])];
         if (std::min({a.y(), b.y(), c.y()}) > options.waterMax) continue;  // dry everywhere
-        I.triangle(a, b, c);
+        if (!(options.kinkSpacing > 0)) {
+            I.triangle(a, b, c);
+            continue;
+        }
+        // Clip the triangle to every lattice cell its footprint's box meets (Sutherland–Hodgman against the cell's
+        // four sides), then integrate the fan of each clipped polygon.
+        const double s = options.kinkSpacing;
+        const double minX = std::min({a.x(), b.x(), c.x()}), maxX = std::max({a.x(), b.x(), c.x()});
+        const double minZ = std::min({a.z(), b.z(), c.z()}), maxZ = std::max({a.z(), b.z(), c.z()});
+        const long long i0 = (long long)std::floor((minX - options.kinkOriginX) / s);
+        const long long i1 = (long long)std::floor((maxX - options.kinkOriginX) / s);
+        const long long j0 = (long long)std::floor((minZ - options.kinkOriginZ) / s);
+        const long long j1 = (long long)std::floor((maxZ - options.kinkOriginZ) / s);
+        for (long long i = i0; i <= i1; ++i)
+            for (long long j = j0; j <= j1; ++j) {
+                std::vector<Eigen::Vector3d> poly = {a, b, c};
+                const double cx0 = options.kinkOriginX + double(i) * s, cz0 = options.kinkOriginZ + double(j) * s;
+                // Half-planes sign·(p[axis] − bound) ≥ 0 bounding the cell.
+                const struct {
+                    int axis;
+                    double bound, sign;
+                } sides[4] = {{0, cx0, 1.0}, {0, cx0 + s, -1.0}, {2, cz0, 1.0}, {2, cz0 + s, -1.0}};
+                for (const auto& side : sides) {
+                    std::vector<Eigen::Vector3d> out;
+                    for (std::size_t k = 0; k < poly.size(); ++k) {
+                        const Eigen::Vector3d& p = poly[k];
+                        const Eigen::Vector3d& q = poly[(k + 1) % poly.size()];
+                        const double dp = side.sign * (p[side.axis] - side.bound);
+                        const double dq = side.sign * (q[side.axis] - side.bound);
+                        if (dp >= 0) out.push_back(p);
+                        if ((dp >= 0) != (dq >= 0)) out.push_back(p + (dp / (dp - dq)) * (q - p));
+                    }
+                    poly.swap(out);
+                    if (poly.size() < 3) break;
+                }
+                for (std::size_t k = 1; k + 1 < poly.size(); ++k) I.triangle(poly[0], poly[k], poly[k + 1]);
+            }
     }
     WaveOracleResult r;
     r.volume = I.sums.V;
@@ -114,6 +151,19 @@ WaveOracleResult waveOracle(const std::vector<Eigen::Vector3d>& verts, const std
     r.force = I.sums.force;
     r.torque = I.sums.torque;
     return r;
+}
+
+double bilinearBoxVolume(const WaveHeightFunction& eta, double ox, double oz, double s, double x0, double x1, double z0,
+                         double z1, double yBottom) {
+    double V = 0;
+    for (long long i = (long long)std::floor((x0 - ox) / s); ox + double(i) * s < x1; ++i)
+        for (long long j = (long long)std::floor((z0 - oz) / s); oz + double(j) * s < z1; ++j) {
+            const double xa = std::max(x0, ox + double(i) * s), xb = std::min(x1, ox + double(i + 1) * s);
+            const double za = std::max(z0, oz + double(j) * s), zb = std::min(z1, oz + double(j + 1) * s);
+            if (xb <= xa || zb <= za) continue;
+            V += (xb - xa) * (zb - za) * (eta(0.5 * (xa + xb), 0.5 * (za + zb)) - yBottom);
+        }
+    return V;
 }
 
 double airyBoxVolume(double a, double k, double phase, double x0, double x1, double yBottom, double lengthZ) {

@@ -33,6 +33,11 @@ struct WaveOracleOptions {
     double gradientStep = 1e-4;   ///< central-difference step of ∇η, m
     /// Triangles whose every corner is higher than this are skipped (dry): the water's highest point, m.
     double waterMax = 1e300;
+    /// > 0: η has slope kinks on the vertical lines x = kinkOriginX + i·kinkSpacing and z = kinkOriginZ + j·kinkSpacing
+    /// (a bilinear grid): every triangle is first clipped to each lattice cell, so no piece straddles a kink, m.
+    double kinkSpacing = 0.0;
+    double kinkOriginX = 0.0;  ///< x of one kink line, m
+    double kinkOriginZ = 0.0;  ///< z of one kink line, m
 };
 
 /// The integrals (world frame).
@@ -52,6 +57,13 @@ struct WaveOracleResult {
 WaveOracleResult waveOracle(const std::vector<Eigen::Vector3d>& verts, const std::vector<Eigen::Vector3i>& tris,
                             const WaveHeightFunction& eta, const Eigen::Vector3d& torqueReference,
                             const WaveOracleOptions& options = WaveOracleOptions());
+
+/// Submerged volume of the box [x0, x1] × [y_b, y_t] × [z0, z1] under water bilinear in every cell of the lattice
+/// x = ox + i·s, z = oz + j·s, when its bottom is wet and its top dry everywhere: the sum over the rectangles where
+/// the footprint meets a cell of their area × (η at their centre − y_b) (a bilinear function's mean over a rectangle
+/// is its value at the centre), m³.
+double bilinearBoxVolume(const WaveHeightFunction& eta, double ox, double oz, double s, double x0, double x1, double z0,
+                         double z1, double yBottom);
 
 /// Submerged volume of the box [x0, x1] × [y_b, y_t] × [z0, z1] under an Airy wave η = a cos(k x + φ) whose crests
 /// run along z, when its bottom is wet and its top dry everywhere: V = L_z [(a/k)(sin(k x1 + φ) − sin(k x0 + φ))

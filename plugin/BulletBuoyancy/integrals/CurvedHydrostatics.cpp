@@ -152,6 +152,57 @@ inline double longestSide(const Patch6& t) {
                                (t.p[0] - t.p[2]).squaredNorm()}));
 }
 
+/// A convex planar polygon (world points): a triangle cut by vertical lattice planes has at most 3 + 2 + 2 corners.
+struct CutPolygon {
+    static constexpr int kCapacity = 10;
+    Eigen::Vector3d v[kCapacity];
+    int n = 0;
+    CutPolygon() {
+        for (Eigen::Vector3d& p : v) p.setZero();
+    }
+};
+
+/// Split `in` by the vertical plane p[axis] = c into the part with p[axis] ≤ c and the part with p[axis] ≥ c (corners
+/// in the same order, so the same orientation).
+void splitPolygon(const CutPolygon& in, int axis, double c, CutPolygon& below, CutPolygon& above) {
+    below.n = above.n = 0;
+    for (int k = 0; k < in.n; ++k) {
+        const Eigen::Vector3d& a = in.v[k];
+        const Eigen::Vector3d& b = in.v[(k + 1) % in.n];
+        const double da = a[axis] - c, db = b[axis] - c;
+        if (da <= 0 && below.n < CutPolygon::kCapacity) below.v[below.n++] = a;
+        if (da >= 0 && above.n < CutPolygon::kCapacity) above.v[above.n++] = a;
+        if ((da < 0 && db > 0) || (da > 0 && db < 0)) {
+            Eigen::Vector3d x = a + (da / (da - db)) * (b - a);
+            x[axis] = c;
+            if (below.n < CutPolygon::kCapacity) below.v[below.n++] = x;
+            if (above.n < CutPolygon::kCapacity) above.v[above.n++] = x;
+        }
+    }
+}
+
+/// Cut `poly` along every lattice line x = origin + k·spacing (axis 0) or z = … (axis 2) strictly inside its extent;
+/// calls emit(piece) for each piece, in order along the axis.
+template <class Emit>
+void cutAlong(const CutPolygon& poly, int axis, double origin, double spacing, Emit&& emit) {
+    double lo = poly.v[0][axis], hi = lo;
+    for (int k = 1; k < poly.n; ++k) {
+        lo = std::min(lo, poly.v[k][axis]);
+        hi = std::max(hi, poly.v[k][axis]);
+    }
+    const double first = std::floor((lo - origin) / spacing) + 1.0, last = std::ceil((hi - origin) / spacing) - 1.0;
+    CutPolygon rest = poly, below, above;
+    for (double k = first; k <= last; k += 1.0) {
+        const double c = origin + k * spacing;
+        if (!(c > lo && c < hi)) continue;
+        splitPolygon(rest, axis, c, below, above);
+        if (below.n >= 3) emit(below);
+        rest = above;
+        if (rest.n < 3) return;
+    }
+    emit(rest);
+}
+
 /// Thread-local scratch (grows, never shrinks).
 struct CurvedScratch {
     std::vector<Eigen::Vector3d> world;  ///< posed vertices, world
@@ -203,6 +254,76 @@ HydrostaticsResult curvedHydrostatics(const TriangleMesh& mesh, const MeshEdges&
     water.heightBounds(minX, minZ, maxX, maxZ, time, hMin, hMax);
     if (minY >= hMax) return HydrostaticsResult{};  // entirely above the water (design.md 2.5)
 
+    const Eigen::Vector3d& r = torqueReference;
+    WetIntegrals I;
+
+    // Water bilinear over a lattice of cells (a grid, an FFT ocean without choppiness): cut every triangle that can
+    // be wet along the lattice lines; over each piece the water is then exactly quadratic (a + b x + c z + d x z along
+    // the piece's plane), so the P2 model through its six heights is the water itself (design.md 2.5). The heights
+    // come from the surface (a patch's interpolation would not be bilinear).
+    btWaterLattice lattice;
+    if (water.bilinearLattice(time, lattice)) {
+        if (!(std::isfinite(lattice.originX) && std::isfinite(lattice.originZ) && lattice.spacingX > 0 &&
+              lattice.spacingZ > 0 && std::isfinite(lattice.spacingX) && std::isfinite(lattice.spacingZ)))
+            throw std::runtime_error("curvedHydrostatics: the water surface reported a lattice with a non-positive or "
+                                     "non-finite spacing");
+        s.current.clear();
+        s.qx.clear();
+        s.qz.clear();
+        const auto addPieceTriangle = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+            Patch6 p{};
+            p.level = 0;
+            p.p[0] = a - r;
+            p.p[1] = b - r;
+            p.p[2] = c - r;
+            p.p[3] = 0.5 * (a + b) - r;
+            p.p[4] = 0.5 * (b + c) - r;
+            p.p[5] = 0.5 * (c + a) - r;
+            for (int k = 0; k < 6; ++k) {
+                const Eigen::Vector3d w = p.p[k] + r;
+                s.qx.push_back(w.x());
+                s.qz.push_back(w.z());
+            }
+            s.current.push_back(p);
+        };
+        for (std::size_t t = 0; t < nt; ++t) {
+            const Eigen::Vector3i& tri = mesh.triangles[t];
+            for (int k = 0; k < 3; ++k)
+                if (tri[k] < 0 || std::size_t(tri[k]) >= nv)
+                    throw std::invalid_argument("curvedHydrostatics: triangle " + std::to_string(t) +
+                                                " has vertex index " + std::to_string(tri[k]) + " out of range");
+            const Eigen::Vector3d &a = s.world[std::size_t(tri[0])], &b = s.world[std::size_t(tri[1])],
+                                  &c = s.world[std::size_t(tri[2])];
+            if (std::min({a.y(), b.y(), c.y()}) >= hMax) continue;
+            CutPolygon poly;
+            poly.v[0] = a;
+            poly.v[1] = b;
+            poly.v[2] = c;
+            poly.n = 3;
+            cutAlong(poly, 0, lattice.originX, lattice.spacingX, [&](const CutPolygon& strip) {
+                cutAlong(strip, 2, lattice.originZ, lattice.spacingZ, [&](const CutPolygon& piece) {
+                    for (int k = 1; k + 1 < piece.n; ++k) addPieceTriangle(piece.v[0], piece.v[k], piece.v[k + 1]);
+                });
+            });
+        }
+        s.qf.resize(s.qx.size());
+        water.heights(s.qx.data(), s.qz.data(), s.qx.size(), time, s.qf.data());
+        for (std::size_t i = 0; i < s.qf.size(); ++i)
+            if (!std::isfinite(s.qf[i]))
+                throw std::runtime_error("curvedHydrostatics: the water surface returned a non-finite height at x=" +
+                                         std::to_string(s.qx[i]) + ", z=" + std::to_string(s.qz[i]));
+        for (std::size_t i = 0; i < s.current.size(); ++i) {
+            Patch6& p = s.current[i];
+            bool wetNode = false;
+            for (int k = 0; k < 6; ++k) {
+                p.f[k] = s.qf[6 * i + std::size_t(k)] - r.y();
+                if (p.p[k].y() < p.f[k]) wetNode = true;
+            }
+            if (wetNode) integrate(p, I);
+        }
+        return I.result(fluidDensity * gravity, r, "curvedHydrostatics");
+    }
+
     // Split triangles longer than the side h at which the third-order part of the water over them, ≈ K₃ h³, reaches
     // the tolerance (kCurvedWaterTolerance × the body's mean thickness V / A: the volume it can add is ≲ that × the
     // wet area). The scale K₃ is the patch's when the heights come from it, else the surface's.
@@ -253,7 +374,6 @@ HydrostaticsResult curvedHydrostatics(const TriangleMesh& mesh, const MeshEdges&
     };
     query();
 
-    const Eigen::Vector3d& r = torqueReference;
     s.current.clear();
     for (std::size_t t = 0; t < nt; ++t) {
         const Eigen::Vector3i& tri = mesh.triangles[t];
@@ -273,7 +393,6 @@ HydrostaticsResult curvedHydrostatics(const TriangleMesh& mesh, const MeshEdges&
         s.current.push_back(p);
     }
 
-    WetIntegrals I;
     const double top = hMax - r.y();
     for (int level = 0; !s.current.empty(); ++level) {
         s.next.clear();

@@ -122,8 +122,14 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
     if (tree.shares.vertexCount() != mesh.vertices.size() || tree.shares.triangleCount() != mesh.triangles.size())
         throw std::invalid_argument("treeHydrostatics: the tree was built for another mesh");
     const double thickness = tree.nodes[0].area > 0 ? std::abs(tree.nodes[0].m1.trace()) / 3.0 / tree.nodes[0].area : 0.0;
+    // Water bilinear over a lattice (a grid, an FFT ocean without choppiness): triangles cut along the lattice lines,
+    // exact for that water, with the surface's own heights (CurvedHydrostatics.cpp).
+    btWaterLattice lattice;
+    if (!flat && water.bilinearLattice(time, lattice))
+        return curvedHydrostatics(mesh, tree.edges, pose, water, time, fluidDensity, gravity, torqueReference, thickness,
+                                  nullptr);
     // Smooth waves that declare their third-derivative scale (Gerstner): the water curved over each triangle
-    // (CurvedHydrostatics.cpp). Surfaces answering by bilinear lookups (grid, FFT, interactive) keep the plane through
+    // (CurvedHydrostatics.cpp). Other surfaces (a choppy FFT ocean, the interactive surface) keep the plane through
     // each triangle's corner heights (per-vertex shares).
     const bool curved = !flat && water.heightThirdDerivativeScale(time) > 0;
     if (!flat && !(patch && patch->finite()))

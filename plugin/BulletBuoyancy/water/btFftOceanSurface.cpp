@@ -240,3 +240,10 @@ std::vector<double> btFftOceanSurface::elevationField(double t) const {
     ensureHeights(t);
     return m_eta;
 }
+
+bool btFftOceanSurface::bilinearLattice(double, btWaterLattice& out) const {
+    if (m_s.choppiness > 0) return false;
+    out.originX = out.originZ = 0.0;
+    out.spacingX = out.spacingZ = m_dx;
+    return true;
+}

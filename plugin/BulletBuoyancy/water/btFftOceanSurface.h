@@ -58,6 +58,11 @@ public:
     void heightBounds(double minX, double minZ, double maxX, double maxZ, double t, double& outMin,
                       double& outMax) const override;
     bool isTimeVarying() const override { return true; }
+    /// The shortest wave the samples hold (Nyquist): 2 L / N, m.
+    double shortestWavelength() const override { return 2.0 * m_dx; }
+    /// Without choppiness the height is the bilinear lookup of the N×N samples: the lattice of spacing L/N through
+    /// the origin. With choppiness the lookup is at the inverted rest position: not bilinear in x, z (false).
+    bool bilinearLattice(double t, btWaterLattice& out) const override;
 
     /// Variance density Ψ(kx, kz) of the spectrum chosen, m⁴ (see the file comment).
     double spectrumDensity(double kx, double kz) const;

@@ -40,6 +40,14 @@ public:
     void heightBounds(double minX, double minZ, double maxX, double maxZ, double t, double& outMin,
                       double& outMax) const override;
     bool isTimeVarying() const override { return m_timeVarying; }
+    /// The sample lattice (bilinear in every cell; outside a clamped grid the edge values hold, still bilinear).
+    bool bilinearLattice(double t, btWaterLattice& out) const override {
+        (void)t;
+        out.originX = m_originX;
+        out.originZ = m_originZ;
+        out.spacingX = out.spacingZ = m_spacing;
+        return true;
+    }
 
     int sizeX() const { return m_nx; }
     int sizeZ() const { return m_nz; }

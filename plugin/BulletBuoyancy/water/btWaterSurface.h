@@ -7,6 +7,15 @@
 #include <cstddef>
 #include <vector>
 
+/// A rectangular lattice of horizontal cells: vertical lines x = originX + i·spacingX and z = originZ + j·spacingZ
+/// for every integer i, j (world, m).
+struct btWaterLattice {
+    double originX = 0.0;   ///< x of one lattice line, m
+    double originZ = 0.0;   ///< z of one lattice line, m
+    double spacingX = 0.0;  ///< distance between lines along x, m, > 0
+    double spacingZ = 0.0;  ///< distance between lines along z, m, > 0
+};
+
 class btWaterSurface;
 
 /// Per-caller memory kept between batch queries (one per body and point set, owned by the caller, never used by
@@ -80,6 +89,16 @@ public:
     /// scale × h³ is large against the body's thickness). 0: the surface is flat or quadratic. Default: from
     /// shortestWavelength() λ and heightBounds() over the origin, (f_max − f_min)/2 · (2π/λ)³; 0 when λ is unknown.
     virtual double heightThirdDerivativeScale(double t) const;
+
+    /// True when, at time t, the height field is bilinear in every cell of the rectangular lattice `out` (a user
+    /// grid, an FFT ocean without horizontal displacement): within a cell it is a + b x + c z + d x z, with slope
+    /// kinks only on the lattice lines. The exact-mesh evaluation then cuts triangles along those lines and is exact
+    /// for this water (design.md 2.5). Default: false.
+    virtual bool bilinearLattice(double t, btWaterLattice& out) const {
+        (void)t;
+        (void)out;
+        return false;
+    }
 
     /// Convenience single-point query, m.
     double height(double x, double z, double t) const {
