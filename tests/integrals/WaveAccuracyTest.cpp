@@ -9,6 +9,7 @@
 #include <BulletBuoyancy/water/btFftOceanSurface.h>
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 #include <BulletBuoyancy/water/btGridWaterSurface.h>
+#include <BulletBuoyancy/water/btInteractiveWaterSurface.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 #include "oracles/OracleMeshes.h"
 #include "oracles/PolyhedralOracle.h"
@@ -200,10 +201,15 @@ TEST_CASE("waves: the default evaluation on grid and FFT water against the bilin
     const btGridWaterSurface grid = userGrid();
     const btFftOceanSurface fft = fftOcean(0.0);
     const btFftOceanSurface choppy = fftOcean(0.4);
-    const std::pair<const char*, const btWaterSurface*> waters[] = {{"grid", &grid}, {"fft", &fft}, {"fft-choppy", &choppy}};
+    // The interactive surface after a few bodies' displacements have spread for 3 s (0.5 m cells).
+    btInteractiveWaterSurface interactive(64.0, 64.0, 128, 2.0, 0.1);
+    for (int k = 0; k < 6; ++k) interactive.addVolumeChange(4.0, -20.0 + 8.0 * k, 10.0 - 4.0 * k, 1.5);
+    interactive.step(3.0);
+    const std::pair<const char*, const btWaterSurface*> waters[] = {
+        {"grid", &grid}, {"fft", &fft}, {"fft-choppy", &choppy}, {"interactive", &interactive}};
     for (const Shape& s : lowPolyShapes())
         for (const auto& water : waters) {
-            const Worst w = measure(s, *water.second, 10, 5u, false);
+            const Worst w = measure(s, *water.second, 8, 5u, false);
             std::printf("  %-13s %-5s  volume %.5f %%  first moment %.2e V·D  force %.5f %% of ρgV\n", s.name,
                         water.first, w.volumePct, w.firstMoment, w.forcePct);
             INFO(s.name << " in " << water.first);

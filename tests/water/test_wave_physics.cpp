@@ -141,7 +141,7 @@ TEST_CASE("interactive water: volume conserved, rings travel at the wave speed",
         btInteractiveWaterCoupler coupler(&water, &w.water);
         w.world.addAction(&coupler);
         const double dt = 1.0 / 240.0;
-        double worstVolume = 0, maxNeighbourSpeed = 0, maxEta = 0;
+        double worstVolume = 0, maxNeighbourSpeed = 0, maxEta = 0, meanDisplaced = 0;
         for (int f = 0; f < 480; ++f) {  // 8 s: the dropped box has settled
             w.world.stepSimulation(btScalar(4 * dt), 4, btScalar(dt));
             worstVolume = std::max(worstVolume, std::abs(water.waterVolume()));
@@ -149,15 +149,18 @@ TEST_CASE("interactive water: volume conserved, rings travel at the wave speed",
             double lo, hi;
             water.heightBounds(0, 0, 0, 0, 0, lo, hi);
             maxEta = std::max(maxEta, std::max(hi, -lo));
+            if (f >= 360) meanDisplaced += coupler.displacedVolume() / 120.0;  // the last 2 s
         }
         w.world.removeAction(&coupler);
         INFO("worst |water volume| " << worstVolume << " m^3, displaced " << coupler.displacedVolume()
                                      << " m^3, max |eta| " << maxEta << " m, neighbour speed " << maxNeighbourSpeed);
         // The water the bodies displace is moved, never created: Σ(η − h)A stays 0 to rounding.
         CHECK(worstVolume <= 1e-9);
-        // Displaced volumes equal the bodies' weights / (ρ g) once they float (Archimedes).
+        // Displaced volumes equal the bodies' weights / (ρ g) once they float (Archimedes): on average over the last
+        // 2 s, since the bodies still bob ±5 % in the waves they made.
         const double floating = (0.8 * 0.4 * 0.8 * 400.0 + 0.6 * 0.3 * 0.6 * 500.0) / 1000.0;
-        CHECK(coupler.displacedVolume() == Approx(floating).epsilon(0.05));
+        INFO("mean displaced over the last 2 s " << meanDisplaced << " m^3");
+        CHECK(meanDisplaced == Approx(floating).epsilon(0.03));
         CHECK(maxEta > 1e-3);              // the drop made waves
         CHECK(maxNeighbourSpeed > 1e-3);   // which rocked the other body
         CHECK(std::isfinite(drop->getCenterOfMassPosition().y()));

@@ -355,12 +355,12 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     // Only for surfaces whose query is an iterative solve (Gerstner's Newton inversion): a grid, FFT or interactive
     // surface answers by a lookup cheaper than the interpolation, and its short ripples would be smoothed away.
     // Its spacing follows the shortest wave (btBuoyancyWaterPatchNodes); a patch with at least as many nodes as the
-    // points it would stand for (vertices or samples, and drag clusters when drag is on) is not built: those are
-    // queried exactly.
+    // points it would stand for (the exact-mesh method's one height per vertex and per edge, or the samples, and
+    // the drag clusters when drag is on) is not built: those are queried exactly.
     if (!predicted && !flat && m_settings.waterPatchNodes > 0 && dynamic_cast<const btGerstnerWaterSurface*>(water)) {
         const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength()));
         const std::size_t points = (m_shape->getMethod() == btBuoyancyMethod::ExactMesh
-                                        ? m_shape->getMesh().vertices.size()
+                                        ? m_shape->getMesh().vertices.size() + m_shape->getMomentTree().edges.edges.size()
                                         : getSamplesInUse().size()) +
                                    (dragOn ? m_drag->size() : 0);
         if (nodes * nodes < points) {

@@ -39,6 +39,14 @@ public:
     void heightBounds(double minX, double minZ, double maxX, double maxZ, double t, double& outMin,
                       double& outMax) const override;
     bool isTimeVarying() const override { return true; }
+    /// The lattice of the cell centres (bilinear between them; clamped beyond the outer centres, still bilinear).
+    bool bilinearLattice(double t, btWaterLattice& out) const override {
+        (void)t;
+        out.originX = m_minX + 0.5 * m_dx;
+        out.originZ = m_minZ + 0.5 * m_dx;
+        out.spacingX = out.spacingZ = m_dx;
+        return true;
+    }
 
     /// A body's displaced volume changed by dV (m³, may be negative) at (x, z) over a footprint of radius
     /// `radius` (m): η rises by dV in a ring that starts two cells outside the footprint (out of the bilinear
