@@ -272,3 +272,44 @@ TEST_CASE("waves: timing of the default evaluation (manual)", "[.timing]") {
             std::printf("  %-13s %-6s  %.2f us per evaluation (one height query %.3f us) %g\n", s.name, sea.first, us, usQ, sink * 0);
         }
 }
+
+TEST_CASE("waves: timing on grid and FFT water, against the plane per triangle (manual)", "[.timing]") {
+    const btGridWaterSurface grid = userGrid();
+    const btFftOceanSurface fft = fftOcean(0.0), choppy = fftOcean(0.4);
+    const std::pair<const char*, const btWaterSurface*> waters[] = {{"grid", &grid}, {"fft", &fft}, {"fft-choppy", &choppy}};
+    std::vector<Shape> shapes = lowPolyShapes();
+    shapes.push_back({"sphere-960", oracleSphere(1.0, 24, 20)});
+    for (const Shape& s : shapes)
+        for (const auto& water : waters) {
+            const TriangleMesh mesh = toTriangleMesh(s.mesh);
+            const MeshMomentTree tree = buildMeshMomentTree(mesh);
+            const int n = 500;
+            double sink = 0;
+            // One time for every evaluation: an FFT ocean synthesises its field once per time value (once per substep
+            // for a whole world), which is not the cost of one body.
+            const auto pose = [&](int i) {
+                const double t = 10, x = 3.0 + 0.01 * i, z = 1.0;
+                Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
+                p.linear() = Eigen::AngleAxisd(0.2, Eigen::Vector3d(1, 0, 0.2).normalized()).toRotationMatrix();
+                p.translation() = Eigen::Vector3d(x, water.second->height(x, z, t), z);
+                return p;
+            };
+            const auto t0 = std::chrono::steady_clock::now();
+            for (int i = 0; i < n; ++i) {
+                const Eigen::Isometry3d p = pose(i);
+                sink += treeHydrostatics(tree, mesh, p, *water.second, 10, kRho, kG, p.translation(), nullptr)
+                            .submerged_volume;
+            }
+            const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / n;
+            const auto t1 = std::chrono::steady_clock::now();
+            for (int i = 0; i < n; ++i) {
+                const Eigen::Isometry3d p = pose(i);
+                sink += vertexHydrostatics(tree.shares, p, *water.second, 10, kRho, kG, p.translation(), nullptr)
+                            .submerged_volume;
+            }
+            const double usPlane =
+                std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t1).count() / n;
+            std::printf("  %-13s %-10s  default %.2f us, plane per triangle %.2f us %g\n", s.name, water.first, us, usPlane,
+                        sink * 0);
+        }
+}

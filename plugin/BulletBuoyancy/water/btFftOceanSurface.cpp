@@ -142,6 +142,31 @@ void btFftOceanSurface::ensureHeights(double t) const {
             toReal(m_work, axis == 0 ? m_dispX : m_dispZ);
         }
     }
+    // Third-derivative scale (design.md 2.5): the largest third difference of the samples along x or z over dx³,
+    // divided by J³, J the smallest Jacobian determinant of the horizontal displacement map (a crest compressed by
+    // the map by J has its derivatives of order n grown by 1/Jⁿ), × 4 for the slope kinks of the bilinear lookup
+    // between samples, which no third derivative shows. The factor was measured against the divergence-theorem
+    // reference (tests/integrals/WaveAccuracyTest.cpp, choppiness 0.4): worst pressure-force error on a 12-triangle
+    // box 0.17 % of ρgV at × 1, 0.09 % on a 64-triangle ellipsoid at × 2, ≤ 0.045 % on every shape at × 4.
+    const auto at = [&](const std::vector<double>& f, int i, int j) {
+        return f[std::size_t((j % m_n + m_n) % m_n) * m_n + std::size_t((i % m_n + m_n) % m_n)];
+    };
+    double d3 = 0, jMin = 1;
+    const double lam = m_s.choppiness;
+    for (int j = 0; j < m_n; ++j)
+        for (int i = 0; i < m_n; ++i) {
+            d3 = std::max(d3, std::abs(at(m_eta, i + 2, j) - 3 * at(m_eta, i + 1, j) + 3 * at(m_eta, i, j) - at(m_eta, i - 1, j)));
+            d3 = std::max(d3, std::abs(at(m_eta, i, j + 2) - 3 * at(m_eta, i, j + 1) + 3 * at(m_eta, i, j) - at(m_eta, i, j - 1)));
+            if (lam > 0) {
+                const double xx = (at(m_dispX, i + 1, j) - at(m_dispX, i - 1, j)) / (2 * m_dx);
+                const double xz = (at(m_dispX, i, j + 1) - at(m_dispX, i, j - 1)) / (2 * m_dx);
+                const double zx = (at(m_dispZ, i + 1, j) - at(m_dispZ, i - 1, j)) / (2 * m_dx);
+                const double zz = (at(m_dispZ, i, j + 1) - at(m_dispZ, i, j - 1)) / (2 * m_dx);
+                jMin = std::min(jMin, (1 + lam * xx) * (1 + lam * zz) - lam * lam * xz * zx);
+            }
+        }
+    jMin = std::max(jMin, 0.05);
+    m_thirdDerivativeScale = 4.0 * d3 / (m_dx * m_dx * m_dx) / (jMin * jMin * jMin);
     m_tHeights = t;
 }
 
@@ -195,12 +220,41 @@ void btFftOceanSurface::restPosition(double x, double z, double& x0, double& z0)
     z0 = z;
     if (!(m_s.choppiness > 0)) return;
     const double lam = m_s.choppiness;
-    for (int it = 0; it < kMaxIterations; ++it) {  // x0 ← x + λ D(x0)
-        const double nx = x + lam * sampleField(m_dispX, x0, z0), nz = z + lam * sampleField(m_dispZ, x0, z0);
-        const double r = std::hypot(nx - x0, nz - z0);
-        x0 = nx;
-        z0 = nz;
-        if (r <= kInversionTolerance) break;
+    // Solve x0 − λ D(x0) = x. Newton's method with the bilinear lookup's own gradient (a few steps), falling back to
+    // the contraction x0 ← x + λ D(x0) where the map's Jacobian is nearly singular or a step lands in a cell whose
+    // bilinear piece does not hold the root (the residual then does not shrink).
+    const auto wrap = [&](double i) {
+        long long r = (long long)i % m_n;
+        return std::size_t(r < 0 ? r + m_n : r);
+    };
+    double previous = std::numeric_limits<double>::infinity();
+    for (int it = 0; it < kMaxIterations; ++it) {
+        const double u = x0 / m_dx, v = z0 / m_dx;
+        const double fu = std::floor(u), fv = std::floor(v), a = u - fu, b = v - fv;
+        const std::size_t i0 = wrap(fu), i1 = wrap(fu + 1), j0 = wrap(fv), j1 = wrap(fv + 1);
+        const std::size_t c00 = j0 * m_n + i0, c10 = j0 * m_n + i1, c01 = j1 * m_n + i0, c11 = j1 * m_n + i1;
+        const auto value = [&](const std::vector<double>& f) {
+            return (1 - b) * ((1 - a) * f[c00] + a * f[c10]) + b * ((1 - a) * f[c01] + a * f[c11]);
+        };
+        const double dx = value(m_dispX), dz = value(m_dispZ);
+        const double fx = x0 - lam * dx - x, fz = z0 - lam * dz - z;
+        const double residual = std::hypot(fx, fz);
+        if (residual <= kInversionTolerance) break;
+        // ∂D/∂x0, ∂D/∂z0 of the bilinear piece.
+        const double dxdx = ((1 - b) * (m_dispX[c10] - m_dispX[c00]) + b * (m_dispX[c11] - m_dispX[c01])) / m_dx;
+        const double dxdz = ((1 - a) * (m_dispX[c01] - m_dispX[c00]) + a * (m_dispX[c11] - m_dispX[c10])) / m_dx;
+        const double dzdx = ((1 - b) * (m_dispZ[c10] - m_dispZ[c00]) + b * (m_dispZ[c11] - m_dispZ[c01])) / m_dx;
+        const double dzdz = ((1 - a) * (m_dispZ[c01] - m_dispZ[c00]) + a * (m_dispZ[c11] - m_dispZ[c10])) / m_dx;
+        const double j11 = 1 - lam * dxdx, j12 = -lam * dxdz, j21 = -lam * dzdx, j22 = 1 - lam * dzdz;
+        const double det = j11 * j22 - j12 * j21;
+        if (det > 0.05 && residual < 0.9 * previous) {
+            x0 -= (j22 * fx - j12 * fz) / det;
+            z0 -= (j11 * fz - j21 * fx) / det;
+        } else {  // the contraction step
+            x0 = x + lam * dx;
+            z0 = z + lam * dz;
+        }
+        previous = residual;
     }
 }
 
@@ -246,4 +300,10 @@ bool btFftOceanSurface::bilinearLattice(double, btWaterLattice& out) const {
     out.originX = out.originZ = 0.0;
     out.spacingX = out.spacingZ = m_dx;
     return true;
+}
+
+double btFftOceanSurface::heightThirdDerivativeScale(double t) const {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    ensureHeights(t);
+    return std::isfinite(m_thirdDerivativeScale) ? m_thirdDerivativeScale : 0.0;
 }

@@ -60,6 +60,9 @@ public:
     bool isTimeVarying() const override { return true; }
     /// The shortest wave the samples hold (Nyquist): 2 L / N, m.
     double shortestWavelength() const override { return 2.0 * m_dx; }
+    /// From the samples at time t: the largest third difference along x or z over dx³, divided by J³ (J the
+    /// smallest Jacobian determinant of the horizontal displacement; 1 without choppiness), 1/m².
+    double heightThirdDerivativeScale(double t) const override;
     /// Without choppiness the height is the bilinear lookup of the N×N samples: the lattice of spacing L/N through
     /// the origin. With choppiness the lookup is at the inverted rest position: not bilinear in x, z (false).
     bool bilinearLattice(double t, btWaterLattice& out) const override;
@@ -91,5 +94,6 @@ private:
     mutable double m_tHeights, m_tVelocity;
     mutable std::vector<double> m_eta, m_dispX, m_dispZ, m_velX, m_velY, m_velZ;
     mutable double m_etaMin = 0, m_etaMax = 0;
+    mutable double m_thirdDerivativeScale = 0;  // 1/m², at m_tHeights
     mutable std::vector<Complex> m_work;
 };
