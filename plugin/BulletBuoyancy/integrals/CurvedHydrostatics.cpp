@@ -210,7 +210,12 @@ struct CurvedScratch {
     std::vector<int> vertexSlot, edgeSlot;
     std::vector<double> qx, qz, qf;      ///< one batch of query points and their heights
     std::vector<Patch6> current, next;
+    std::vector<std::size_t> pieceCell;  ///< lattice water: each piece's cell (index of its lower-left node)
+    std::vector<int> nodeSlot;           ///< lattice water: each node's query slot (−1: not needed)
 };
+
+/// Largest table of lattice nodes under one body (beyond it, six height queries per piece instead).
+constexpr double kMaxLatticeNodes = 1 << 22;
 
 }  // namespace
 
@@ -267,10 +272,39 @@ HydrostaticsResult curvedHydrostatics(const TriangleMesh& mesh, const MeshEdges&
               lattice.spacingZ > 0 && std::isfinite(lattice.spacingX) && std::isfinite(lattice.spacingZ)))
             throw std::runtime_error("curvedHydrostatics: the water surface reported a lattice with a non-positive or "
                                      "non-finite spacing");
+        // The lattice nodes under the triangles that can be wet: i0..i1 along x, j0..j1 along z.
+        double bx0 = std::numeric_limits<double>::infinity(), bz0 = bx0, bx1 = -bx0, bz1 = -bx0;
+        for (std::size_t t = 0; t < nt; ++t) {
+            const Eigen::Vector3i& tri = mesh.triangles[t];
+            for (int k = 0; k < 3; ++k)
+                if (tri[k] < 0 || std::size_t(tri[k]) >= nv)
+                    throw std::invalid_argument("curvedHydrostatics: triangle " + std::to_string(t) +
+                                                " has vertex index " + std::to_string(tri[k]) + " out of range");
+            const Eigen::Vector3d &a = s.world[std::size_t(tri[0])], &b = s.world[std::size_t(tri[1])],
+                                  &c = s.world[std::size_t(tri[2])];
+            if (std::min({a.y(), b.y(), c.y()}) >= hMax) continue;
+            bx0 = std::min({bx0, a.x(), b.x(), c.x()});
+            bx1 = std::max({bx1, a.x(), b.x(), c.x()});
+            bz0 = std::min({bz0, a.z(), b.z(), c.z()});
+            bz1 = std::max({bz1, a.z(), b.z(), c.z()});
+        }
+        if (!(bx0 <= bx1)) return I.result(fluidDensity * gravity, r, "curvedHydrostatics");  // nothing can be wet
+        const double i0 = std::floor((bx0 - lattice.originX) / lattice.spacingX);
+        const double j0 = std::floor((bz0 - lattice.originZ) / lattice.spacingZ);
+        const double ni = std::floor((bx1 - lattice.originX) / lattice.spacingX) - i0 + 2.0;  // nodes along x
+        const double nj = std::floor((bz1 - lattice.originZ) / lattice.spacingZ) - j0 + 2.0;
+        // Heights at the nodes (one query each, then the bilinear formula) unless the body covers so many cells that
+        // a table of its nodes would be large: then six queries per piece.
+        const bool byNodes = ni * nj <= double(kMaxLatticeNodes);
+        const std::size_t nodeCount = byNodes ? std::size_t(ni * nj) : 0;
+        const std::size_t rowLength = byNodes ? std::size_t(ni) : 0;
         s.current.clear();
+        s.pieceCell.clear();
         s.qx.clear();
         s.qz.clear();
-        const auto addPieceTriangle = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+        if (byNodes) s.nodeSlot.assign(nodeCount, -1);
+        const auto addPieceTriangle = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                                          std::size_t cell) {
             Patch6 p{};
             p.level = 0;
             p.p[0] = a - r;
@@ -279,19 +313,17 @@ HydrostaticsResult curvedHydrostatics(const TriangleMesh& mesh, const MeshEdges&
             p.p[3] = 0.5 * (a + b) - r;
             p.p[4] = 0.5 * (b + c) - r;
             p.p[5] = 0.5 * (c + a) - r;
-            for (int k = 0; k < 6; ++k) {
-                const Eigen::Vector3d w = p.p[k] + r;
-                s.qx.push_back(w.x());
-                s.qz.push_back(w.z());
-            }
+            if (!byNodes)
+                for (int k = 0; k < 6; ++k) {
+                    const Eigen::Vector3d w = p.p[k] + r;
+                    s.qx.push_back(w.x());
+                    s.qz.push_back(w.z());
+                }
             s.current.push_back(p);
+            s.pieceCell.push_back(cell);
         };
         for (std::size_t t = 0; t < nt; ++t) {
             const Eigen::Vector3i& tri = mesh.triangles[t];
-            for (int k = 0; k < 3; ++k)
-                if (tri[k] < 0 || std::size_t(tri[k]) >= nv)
-                    throw std::invalid_argument("curvedHydrostatics: triangle " + std::to_string(t) +
-                                                " has vertex index " + std::to_string(tri[k]) + " out of range");
             const Eigen::Vector3d &a = s.world[std::size_t(tri[0])], &b = s.world[std::size_t(tri[1])],
                                   &c = s.world[std::size_t(tri[2])];
             if (std::min({a.y(), b.y(), c.y()}) >= hMax) continue;
@@ -302,7 +334,25 @@ HydrostaticsResult curvedHydrostatics(const TriangleMesh& mesh, const MeshEdges&
             poly.n = 3;
             cutAlong(poly, 0, lattice.originX, lattice.spacingX, [&](const CutPolygon& strip) {
                 cutAlong(strip, 2, lattice.originZ, lattice.spacingZ, [&](const CutPolygon& piece) {
-                    for (int k = 1; k + 1 < piece.n; ++k) addPieceTriangle(piece.v[0], piece.v[k], piece.v[k + 1]);
+                    // The piece's cell: the one holding its centroid (a piece lies inside one cell).
+                    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+                    for (int k = 0; k < piece.n; ++k) centre += piece.v[k];
+                    centre /= double(piece.n);
+                    std::size_t cell = 0;
+                    if (byNodes) {
+                        const double ci = std::clamp(std::floor((centre.x() - lattice.originX) / lattice.spacingX) - i0,
+                                                     0.0, ni - 2.0);
+                        const double cj = std::clamp(std::floor((centre.z() - lattice.originZ) / lattice.spacingZ) - j0,
+                                                     0.0, nj - 2.0);
+                        cell = std::size_t(cj) * rowLength + std::size_t(ci);
+                        for (const std::size_t node : {cell, cell + 1, cell + rowLength, cell + rowLength + 1})
+                            if (s.nodeSlot[node] < 0) {
+                                s.nodeSlot[node] = int(s.qx.size());
+                                s.qx.push_back(lattice.originX + (i0 + double(node % rowLength)) * lattice.spacingX);
+                                s.qz.push_back(lattice.originZ + (j0 + double(node / rowLength)) * lattice.spacingZ);
+                            }
+                    }
+                    for (int k = 1; k + 1 < piece.n; ++k) addPieceTriangle(piece.v[0], piece.v[k], piece.v[k + 1], cell);
                 });
             });
         }
@@ -314,11 +364,25 @@ HydrostaticsResult curvedHydrostatics(const TriangleMesh& mesh, const MeshEdges&
                                          std::to_string(s.qx[i]) + ", z=" + std::to_string(s.qz[i]));
         for (std::size_t i = 0; i < s.current.size(); ++i) {
             Patch6& p = s.current[i];
-            bool wetNode = false;
-            for (int k = 0; k < 6; ++k) {
-                p.f[k] = s.qf[6 * i + std::size_t(k)] - r.y();
-                if (p.p[k].y() < p.f[k]) wetNode = true;
+            if (byNodes) {
+                // The bilinear water of the piece's cell from its corner heights.
+                const std::size_t cell = s.pieceCell[i];
+                const double h00 = s.qf[std::size_t(s.nodeSlot[cell])], h10 = s.qf[std::size_t(s.nodeSlot[cell + 1])];
+                const double h01 = s.qf[std::size_t(s.nodeSlot[cell + rowLength])];
+                const double h11 = s.qf[std::size_t(s.nodeSlot[cell + rowLength + 1])];
+                const double cx = lattice.originX + (i0 + double(cell % rowLength)) * lattice.spacingX;
+                const double cz = lattice.originZ + (j0 + double(cell / rowLength)) * lattice.spacingZ;
+                for (int k = 0; k < 6; ++k) {
+                    const double u = (p.p[k].x() + r.x() - cx) / lattice.spacingX;
+                    const double v = (p.p[k].z() + r.z() - cz) / lattice.spacingZ;
+                    p.f[k] = (1 - v) * ((1 - u) * h00 + u * h10) + v * ((1 - u) * h01 + u * h11) - r.y();
+                }
+            } else {
+                for (int k = 0; k < 6; ++k) p.f[k] = s.qf[6 * i + std::size_t(k)] - r.y();
             }
+            bool wetNode = false;
+            for (int k = 0; k < 6; ++k)
+                if (p.p[k].y() < p.f[k]) wetNode = true;
             if (wetNode) integrate(p, I);
         }
         return I.result(fluidDensity * gravity, r, "curvedHydrostatics");

@@ -238,8 +238,8 @@ void btFftOceanSurface::restPosition(double x, double z, double& x0, double& z0)
         };
         const double dx = value(m_dispX), dz = value(m_dispZ);
         const double fx = x0 - lam * dx - x, fz = z0 - lam * dz - z;
-        const double residual = std::hypot(fx, fz);
-        if (residual <= kInversionTolerance) break;
+        const double residual = fx * fx + fz * fz;  // squared, m²
+        if (residual <= kInversionTolerance * kInversionTolerance) break;
         // ∂D/∂x0, ∂D/∂z0 of the bilinear piece.
         const double dxdx = ((1 - b) * (m_dispX[c10] - m_dispX[c00]) + b * (m_dispX[c11] - m_dispX[c01])) / m_dx;
         const double dxdz = ((1 - a) * (m_dispX[c01] - m_dispX[c00]) + a * (m_dispX[c11] - m_dispX[c10])) / m_dx;
@@ -247,7 +247,7 @@ void btFftOceanSurface::restPosition(double x, double z, double& x0, double& z0)
         const double dzdz = ((1 - a) * (m_dispZ[c01] - m_dispZ[c00]) + a * (m_dispZ[c11] - m_dispZ[c10])) / m_dx;
         const double j11 = 1 - lam * dxdx, j12 = -lam * dxdz, j21 = -lam * dzdx, j22 = 1 - lam * dzdz;
         const double det = j11 * j22 - j12 * j21;
-        if (det > 0.05 && residual < 0.9 * previous) {
+        if (det > 0.05 && residual < 0.81 * previous) {  // |residual| shrank by 10 %
             x0 -= (j22 * fx - j12 * fz) / det;
             z0 -= (j11 * fz - j21 * fx) / det;
         } else {  // the contraction step
