@@ -8,6 +8,7 @@
 #include <BulletBuoyancy/integrals/Hydrostatics.h>
 
 #include <BulletBuoyancy/integrals/MeshMomentTree.h>
+#include <BulletBuoyancy/integrals/WaterPatch.h>
 
 #include <catch2/catch.hpp>
 
@@ -126,4 +127,45 @@ TEST_CASE("short waves: a low-poly body is queried exactly, not through a larger
         // 1e-7 of V, not to rounding: a float build's rotation is orthonormal only to float precision (~6e-8).
         CHECK(std::abs(r.submergedVolume - exact.submerged_volume) <= 1e-7 * 0.32);
     }
+}
+
+// The drag clusters decide about the wave patch for the drag alone: a body with fewer heights to query than the patch
+// has nodes keeps exact heights for its hydrostatics even when its drag probes use the patch.
+TEST_CASE("waves: drag probes do not put a low-poly body's hydrostatics on the patch", "[bullet][lod]") {
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(1.0, 0.4, 0.8));
+    btGerstnerWave wave;
+    wave.amplitude = 0.3;
+    wave.wavelength = 8.0;
+    wave.steepness = 0.5;
+    const btGerstnerWaterSurface sea({wave});
+    BulletTestWorld w(&sea);
+    btBuoyantBodySettings body;
+    body.density = 400;
+    btBuoyancySettings settings;  // default drag: its clusters are queried through the patch
+    settings.hydrostaticsInterval = 1;
+    w.add(shape, body, makePose(btVector3(0, 0.25, 0)), settings);
+    const int nodes = btBuoyancyWaterPatchNodes(settings, shape->getBoundsRadius(), sea.shortestWavelength());
+    const buoyancy::MeshMomentTree& tree = shape->getMomentTree();
+    // The box's own heights: 8 vertices and 18 edges, fewer than the patch's nodes.
+    REQUIRE(nodes * nodes >= int(shape->getMesh().vertices.size() + tree.edges.edges.size()));
+    double patchDifference = 0;
+    for (int substep = 0; substep < 30; ++substep) {
+        w.step(1, 1, 1.0 / 240);
+        const btBuoyancyResult& r = w.action(0).getLastResult();
+        REQUIRE(r.applied);
+        const Eigen::Isometry3d pose = buoyancy::toEigen(w.rigid(0)->getWorldTransform() * w.body(0).getMeshInComFrame());
+        const double thickness = std::abs(tree.nodes[0].m1.trace()) / 3.0 / tree.nodes[0].area;
+        const buoyancy::HydrostaticsResult exact = buoyancy::curvedHydrostatics(
+            shape->getMesh(), tree.edges, pose, sea, r.time, 1000, 9.81, pose.translation(), thickness, nullptr);
+        // The same water through a patch like the drag's, to show the check below can tell them apart.
+        buoyancy::WaterPatch patch;
+        btWaterQueryCache cache;
+        patch.build(sea, pose.translation().x(), pose.translation().z(), shape->getBoundsRadius(), r.time, nodes, cache);
+        const buoyancy::HydrostaticsResult viaPatch = buoyancy::curvedHydrostatics(
+            shape->getMesh(), tree.edges, pose, sea, r.time, 1000, 9.81, pose.translation(), thickness, &patch);
+        patchDifference = std::max(patchDifference, std::abs(viaPatch.submerged_volume - exact.submerged_volume));
+        CHECK(std::abs(r.submergedVolume - exact.submerged_volume) <= 1e-7 * 0.32);
+    }
+    INFO("largest difference of the patch's evaluation " << patchDifference << " m^3");
+    CHECK(patchDifference > 1e-6 * 0.32);
 }

@@ -63,12 +63,12 @@ std::vector<Shape> lowPolyShapes() {
 /// plus drag clusters).
 HydrostaticsResult defaultEvaluation(const MeshMomentTree& tree, const TriangleMesh& mesh, const Eigen::Isometry3d& pose,
                                      const btWaterSurface& water, double t, const Eigen::Vector3d& com,
-                                     double radius, bool dragOn, WaterPatch& patch, btWaterQueryCache& cache) {
+                                     double radius, WaterPatch& patch, btWaterQueryCache& cache) {
     const btBuoyancySettings settings;
     const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(settings, radius, water.shortestWavelength()));
-    // The points the patch would stand for: one height per vertex and per edge, and the drag clusters.
-    const std::size_t points =
-        mesh.vertices.size() + tree.edges.edges.size() + (dragOn ? std::size_t(settings.dragClusters) : 0);
+    // The hydrostatics use the patch only when it has fewer nodes than their own heights (one per vertex and per
+    // edge); drag probes do not count (the action decides for its drag apart).
+    const std::size_t points = mesh.vertices.size() + tree.edges.edges.size();
     const Eigen::Vector3d c = pose * Eigen::Vector3d::Zero();
     const WaterPatch* p = nullptr;
     // The action builds a patch only over Gerstner water (whose query is an iterative solve).
@@ -102,7 +102,7 @@ WaveOracleOptions oracleOptionsFor(const btWaterSurface& water, double t, double
     return o;
 }
 
-Worst measure(const Shape& s, const btWaterSurface& water, int poses, unsigned seed, bool dragOn) {
+Worst measure(const Shape& s, const btWaterSurface& water, int poses, unsigned seed) {
     const TriangleMesh mesh = toTriangleMesh(s.mesh);
     const MeshMomentTree tree = buildMeshMomentTree(mesh);
     const OracleMoments dry = oracleDryMoments(s.mesh.verts, s.mesh.tris);
@@ -128,7 +128,7 @@ Worst measure(const Shape& s, const btWaterSurface& water, int poses, unsigned s
         pose.translation() = Eigen::Vector3d(x, eta + 0.3 * height * U(rng), z);
         const Eigen::Vector3d com = pose * dry.centroid;
         const HydrostaticsResult h =
-            defaultEvaluation(tree, mesh, pose, water, t, com, radius, dragOn, patch, cache);
+            defaultEvaluation(tree, mesh, pose, water, t, com, radius, patch, cache);
         double hMin = 0, hMax = 0;
         water.heightBounds(x - D, z - D, x + D, z + D, t, hMin, hMax);
         WaveOracleOptions o = oracleOptionsFor(water, t, D);
@@ -155,11 +155,11 @@ TEST_CASE("waves: the default evaluation of low-poly shapes against the divergen
     const std::pair<const char*, std::vector<btGerstnerWave>> seas[] = {{"swell", swell()}, {"chop", chop()}};
     for (const Shape& s : lowPolyShapes())
         for (const auto& sea : seas)
-            for (bool dragOn : {false, true}) {  // drag on: the wave patch the action builds for its drag clusters
-                const Worst w = measure(s, btGerstnerWaterSurface(sea.second), 10, 7u, dragOn);
-                std::printf("  %-13s %-6s drag %-3s  volume %.4f %%  first moment %.2e V·D  force %.4f %% of ρgV\n", s.name,
-                            sea.first, dragOn ? "on" : "off", w.volumePct, w.firstMoment, w.forcePct);
-                INFO(s.name << " in " << sea.first << (dragOn ? " (drag on: patch)" : ""));
+            {
+                const Worst w = measure(s, btGerstnerWaterSurface(sea.second), 10, 7u);
+                std::printf("  %-13s %-6s  volume %.4f %%  first moment %.2e V·D  force %.4f %% of ρgV\n", s.name,
+                            sea.first, w.volumePct, w.firstMoment, w.forcePct);
+                INFO(s.name << " in " << sea.first);
                 CHECK(w.volumePct <= 0.1);
                 CHECK(w.firstMoment <= 1e-3);
                 CHECK(w.forcePct <= 0.1);
@@ -213,7 +213,7 @@ TEST_CASE("waves: the default evaluation on grid and FFT water against the bilin
         {"grid", &grid}, {"fft", &fft}, {"fft-choppy", &choppy}, {"interactive", &interactive}};
     for (const Shape& s : lowPolyShapes())
         for (const auto& water : waters) {
-            const Worst w = measure(s, *water.second, 8, 5u, false);
+            const Worst w = measure(s, *water.second, 8, 5u);
             std::printf("  %-13s %-11s volume %.5f %%  first moment %.2e V·D  force %.5f %% of ρgV  (plane per triangle: "
                         "volume %.3f %%)\n",
                         s.name, water.first, w.volumePct, w.firstMoment, w.forcePct, w.planeVolumePct);
@@ -268,7 +268,7 @@ TEST_CASE("waves: timing of the default evaluation (manual)", "[.timing]") {
                 Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
                 pose.linear() = Eigen::AngleAxisd(0.2, Eigen::Vector3d(1, 0, 0.2).normalized()).toRotationMatrix();
                 pose.translation() = Eigen::Vector3d(x, water.height(x, z, t), z);
-                sink += defaultEvaluation(tree, mesh, pose, water, t, pose.translation(), 3.0, false, patch, cache).submerged_volume;
+                sink += defaultEvaluation(tree, mesh, pose, water, t, pose.translation(), 3.0, patch, cache).submerged_volume;
             }
             const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / n;
             const auto t1 = std::chrono::steady_clock::now();

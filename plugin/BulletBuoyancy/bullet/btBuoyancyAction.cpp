@@ -354,26 +354,32 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
         m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 || m_settings.linearDamping > 0;
     // Only for surfaces whose query is an iterative solve (Gerstner's Newton inversion): a grid, FFT or interactive
     // surface answers by a lookup cheaper than the interpolation, and its short ripples would be smoothed away.
-    // Its spacing follows the shortest wave (btBuoyancyWaterPatchNodes); a patch with at least as many nodes as the
-    // points it would stand for (the exact-mesh method's one height per vertex and per edge, or the samples, and
-    // the drag clusters when drag is on) is not built: those are queried exactly.
+    // Its spacing follows the shortest wave (btBuoyancyWaterPatchNodes). Each consumer uses the patch only when it
+    // has fewer nodes than the heights that consumer would query exactly: the hydrostatics (one height per vertex
+    // and per edge for the exact-mesh method, or the samples) and the drag (its clusters) decide apart, so a small
+    // body's drag probes do not put its hydrostatics on interpolated heights. Not needed by either: not built.
+    const buoyancy::WaterPatch* dragPatch = nullptr;
     if (!predicted && !flat && m_settings.waterPatchNodes > 0 && dynamic_cast<const btGerstnerWaterSurface*>(water)) {
         const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength()));
-        const std::size_t points = (m_shape->getMethod() == btBuoyancyMethod::ExactMesh
-                                        ? m_shape->getMesh().vertices.size() + m_shape->getMomentTree().edges.edges.size()
-                                        : getSamplesInUse().size()) +
-                                   (dragOn ? m_drag->size() : 0);
-        if (nodes * nodes < points) {
+        const std::size_t hydroPoints = m_shape->getMethod() == btBuoyancyMethod::ExactMesh
+                                            ? m_shape->getMesh().vertices.size() + m_shape->getMomentTree().edges.edges.size()
+                                            : getSamplesInUse().size();
+        const std::size_t dragPoints = dragOn ? m_drag->size() : 0;
+        if (nodes * nodes < std::max(hydroPoints, dragPoints)) {
             try {
                 m_patch.build(*water, bc.x(), bc.z(), br, time, int(nodes), m_patchCache);
-                if (m_patch.finite()) patch = &m_patch;
+                if (m_patch.finite()) {
+                    if (nodes * nodes < hydroPoints) patch = &m_patch;
+                    if (nodes * nodes < dragPoints) dragPatch = &m_patch;
+                }
             } catch (const std::exception&) {
-                patch = nullptr;  // a degenerate footprint: fall back to exact queries
+                patch = dragPatch = nullptr;  // a degenerate footprint: fall back to exact queries
             }
         }
     }
 
-    if (!predicted) m_lastWaterSlope = flat ? 0.0 : patch ? patch->slopeBound() : 1.0;
+    const buoyancy::WaterPatch* built = patch ? patch : dragPatch;
+    if (!predicted) m_lastWaterSlope = flat ? 0.0 : built ? built->slopeBound() : 1.0;
 
     const btBuoyancyMethod method = m_shape->getMethod();
     bool onDevice = false;  // h came from the world's device backend
@@ -421,7 +427,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
         dragT = prediction.dragTorque;
         uMean = m_lastMeanWaterVelocity;
     } else if (dragOn && !(onDevice && m_world->getDeviceBackend()->drag(*this, com, v, w, dragF, dragT, uMean))) {
-        computeDrag(pose, patch, com, v, w, rho, time, dragF, dragT, uMean, predicted);
+        computeDrag(pose, dragPatch, com, v, w, rho, time, dragF, dragT, uMean, predicted);
     }
     if (!predicted) m_lastMeanWaterVelocity = uMean;
     if (evaluationSubstep) {
