@@ -4,6 +4,13 @@
 #include "benchmark/BenchShapes.h"
 #include "benchmark/PlaneClipMethods.h"
 #include "oracles/PolyhedralOracle.h"
+#include "oracles/WaveOracle.h"
+#include "benchmark/Scaling.h"
+
+#include <BulletBuoyancy/bullet/btBuoyancySettings.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
+#include <BulletBuoyancy/integrals/MeshMomentTree.h>
+#include <BulletBuoyancy/integrals/WaterPatch.h>
 
 #include <BulletBuoyancy/mesh/MeshImport.h>
 #include <BulletBuoyancy/mesh/MeshRepair.h>
@@ -15,6 +22,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <ctime>
 
 namespace {
 
@@ -190,5 +199,57 @@ TEST_CASE("wave poses put the body's centre at the local water height at their t
         CHECK(c.x() == Approx(0).margin(1e-12));
         CHECK(c.z() == Approx(0).margin(1e-12));
         CHECK(c.y() == Approx(water.height(0, 0, p.time) + p.offsetFraction * height).margin(1e-12));
+    }
+}
+
+// Fine meshes in the scaling sea: the plane through each triangle's corner heights against the curved-water model,
+// error against the divergence-theorem reference and CPU time, with the estimate treeHydrostatics decides by.
+TEST_CASE("waves: fine meshes, plane against curved water (manual)", "[.timing]") {
+    const btGerstnerWaterSurface water(buoyancy::bench::p3Sea());
+    const buoyancy::TriangleMesh boat = buoyancy::bench::loadBoatHull();
+    const std::pair<const char*, buoyancy::TriangleMesh> meshes[] = {{"boat-850", boat},
+                                                                     {"boat-x4", buoyancy::bench::subdivideMesh(boat)}};
+    for (const auto& m : meshes) {
+        const buoyancy::MeshMomentTree tree = buoyancy::buildMeshMomentTree(m.second);
+        const double thickness = std::abs(tree.nodes[0].m1.trace()) / 3.0 / tree.nodes[0].area;
+        std::vector<Eigen::Vector3d> verts(m.second.vertices.begin(), m.second.vertices.end());
+        std::vector<Eigen::Vector3i> tris(m.second.triangles.begin(), m.second.triangles.end());
+        const buoyancy_test::OracleMoments dry = buoyancy_test::oracleDryMoments(verts, tris);
+        double worstPlane = 0, worstCurved = 0, estimate = 0, usPlane = 0, usCurved = 0;
+        buoyancy::WaterPatch patch;
+        btWaterQueryCache cache;
+        const btBuoyancySettings settings;
+        double lo = 1e300, hi = -1e300, radius = 0;
+        for (const auto& v : verts) radius = std::max(radius, (v - dry.centroid).norm());
+        for (int i = 0; i < 8; ++i) {
+            const double t = 5.0 + 3.7 * i, x = 2.0 * i, z = -1.0 * i;
+            Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+            pose.linear() = Eigen::AngleAxisd(0.1 * i, Eigen::Vector3d(1, 0, 0.3).normalized()).toRotationMatrix();
+            pose.translation() = Eigen::Vector3d(x, water.height(x, z, t), z) - pose.linear() * dry.centroid;
+            const int nodes = btBuoyancyWaterPatchNodes(settings, radius, water.shortestWavelength());
+            patch.build(water, x, z, radius, t, nodes, cache);
+            estimate = std::max(estimate, patch.curvatureBound() * tree.medianLeafRadius * tree.medianLeafRadius /
+                                              (8.0 * thickness));
+            const Eigen::Vector3d com = pose * dry.centroid;
+            buoyancy_test::WaveOracleOptions o;
+            o.maxEdge = water.shortestWavelength() / 40.0;
+            o.forceAndTorque = false;
+            std::vector<Eigen::Vector3d> posed(verts.size());
+            for (std::size_t k = 0; k < verts.size(); ++k) posed[k] = pose * verts[k];
+            const auto ref = buoyancy_test::waveOracle(posed, tris, [&](double qx, double qz) { return water.height(qx, qz, t); },
+                                                       com, o);
+            const auto t0 = std::clock();
+            const auto plane = buoyancy::vertexHydrostatics(tree.shares, pose, water, t, 1000, 9.81, com, &patch);
+            const auto t1 = std::clock();
+            const auto curved = buoyancy::curvedHydrostatics(m.second, tree.edges, pose, water, t, 1000, 9.81, com,
+                                                             thickness, &patch);
+            const auto t2 = std::clock();
+            usPlane += 1e6 * double(t1 - t0) / CLOCKS_PER_SEC / 8;
+            usCurved += 1e6 * double(t2 - t1) / CLOCKS_PER_SEC / 8;
+            worstPlane = std::max(worstPlane, 100 * std::abs(plane.submerged_volume - ref.volume) / dry.volume);
+            worstCurved = std::max(worstCurved, 100 * std::abs(curved.submerged_volume - ref.volume) / dry.volume);
+        }
+        std::printf("  %-9s leaf %.3f m  thickness %.3f m  estimate %.4f  plane %.4f %% (%.0f us)  curved %.4f %% (%.0f us)\n",
+                    m.first, tree.medianLeafRadius, thickness, estimate, worstPlane, usPlane, worstCurved, usCurved);
     }
 }
