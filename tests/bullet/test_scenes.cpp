@@ -7,7 +7,6 @@
 #include "scene/SceneFile.h"
 #include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 
-#include <LinearMath/btScalar.h>
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -119,9 +118,10 @@ TEST_CASE("scene zup_plank.json: a Z-up world (gravity -z, water frame up +z) fl
     CHECK(std::abs(z) < 0.02);
     CHECK(zRange > 0.1);   // heaving with the swell (wave height 0.2 m)
     CHECK(zRange < 0.25);
-    // Nothing along y: the swell runs along x. Rounding only: in float Bullet the pose's rounding (6e-8 relative) lets
-    // it drift by 1.2e-5 m in 10 s (measured), bar 1e-4; in double 1e-6.
-    const double bar = sizeof(btScalar) == sizeof(double) ? 1e-6 : 1e-4;
+    // Almost nothing along y: the swell runs along x. The box's triangulation is not mirror-symmetric, so on curved
+    // water (the quadratic over each triangle) the lateral force is not exactly 0: the plank drifts by 1.2e-5 m in 10 s
+    // in both precisions, and the Y-up copy of this scene drifts by the same along its −z (measured, to 1e-14 m).
+    const double bar = 1e-4;
     CHECK(std::abs(y) < bar);
     CHECK(yRange < bar);
 }
