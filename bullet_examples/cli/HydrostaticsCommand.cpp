@@ -114,6 +114,11 @@ CommandWater makeCommandWater(const HydrostaticsOptions& o, double gravity) {
                    "a scene with `buoyancy run`";
         return "";
     });
+    // The command's world is y-up with the water's coordinates (the mesh is posed by --rotate / --translate): a
+    // "frame" other than that one would be ignored, so it is refused rather than silently dropped.
+    if (!scene.waterFrame.isIdentity())
+        throw UsageError(path + ": frame: `buoyancy hydrostatics` works in the water's own coordinates (y up): leave "
+                                "\"frame\" out and pose the mesh with --rotate / --translate");
     SceneWaterSurface made;
     try {
         made = makeSceneWater(scene);

@@ -39,6 +39,7 @@ struct BodySummary {
     double sumSubmerged = 0.0;                   ///< Σ submerged volume over the rows, m³
     long rows = 0;                               ///< rows written
     double x = 0, y = 0, z = 0;                  ///< last mesh-origin position, m
+    double height = 0;                           ///< last mesh-origin height along the water frame's up, m
 };
 
 void writeRows(std::FILE* f, double t, const Scene& scene, SceneWorld& w, std::vector<BodySummary>& summary,
@@ -75,12 +76,17 @@ void writeRows(std::FILE* f, double t, const Scene& scene, SceneWorld& w, std::v
         line += '\n';
         std::fputs(line.c_str(), f);
         BodySummary& s = summary[i];
-        s.minUp = std::min(s.minUp, double(c.y()));
-        s.maxUp = std::max(s.maxUp, double(c.y()));
+        // Heights along the water frame's up (world y for a +y-up scene).
+        const btWaterFrame& frame = w.buoyancy->getWaterFrame();
+        const double up = frame.toWaterPoint(Eigen::Vector3d(double(c.x()), double(c.y()), double(c.z()))).y();
+        s.minUp = std::min(s.minUp, up);
+        s.maxUp = std::max(s.maxUp, up);
         s.sumSubmerged += r.submergedVolume;
         ++s.rows;
         s.x = mesh.getOrigin().x();
         s.y = mesh.getOrigin().y();
+        s.height = frame.toWaterPoint(Eigen::Vector3d(double(mesh.getOrigin().x()), double(mesh.getOrigin().y()),
+                                                      double(mesh.getOrigin().z()))).y();
         s.z = mesh.getOrigin().z();
     }
 }
@@ -147,7 +153,7 @@ void printSummary(const Scene& scene, const std::vector<BodySummary>& summary, d
     std::printf("%zu bodies (one row each: python3 scripts/run_summary.py OUT)\n", shown.size());
     spread("heave amplitude", "m", [](const BodySummary& b) { return 0.5 * (b.maxUp - b.minUp); });
     spread("mean submerged volume", "m3", [](const BodySummary& b) { return b.sumSubmerged / b.rows; });
-    spread("final height (y)", "m", [](const BodySummary& b) { return b.y; });
+    spread("final height (along up)", "m", [](const BodySummary& b) { return b.height; });
 }
 
 }  // namespace

@@ -16,7 +16,7 @@ namespace buoyancy::render {
 struct RenderCamera {
     Eigen::Vector3f target = Eigen::Vector3f::Zero(); ///< point looked at, world, m
     float distance = 10.f;  ///< eye–target distance, m
-    float yawDeg = 35.f;    ///< rotation of the eye about +y, degrees (0: eye on +z)
+    float yawDeg = 35.f;    ///< rotation of the eye about +y (the water frame's up: SceneFrame.h), degrees (0: eye on +z)
     float pitchDeg = 22.f;  ///< elevation of the eye above the target's horizontal plane, degrees
     float fovDeg = 45.f;    ///< vertical field of view, degrees
 

@@ -21,6 +21,25 @@ Eigen::Matrix4f toMatrix(const btTransform& t) {
 
 Eigen::Vector3f toVec(const btVector3& v) { return Eigen::Vector3f(float(v.x()), float(v.y()), float(v.z())); }
 
+/// The scene's water frame (the identity without a buoyancy context). A frame is drawn in its coordinates: the
+/// renderer's y is the frame's up, so the camera orbits about up and the water is a height field in y, whatever
+/// the scene's gravity (a +y-up scene: the world's coordinates exactly).
+const btWaterFrame& waterFrameOf(const cli::SceneWorld& world) {
+    static const btWaterFrame identity;
+    return world.buoyancy ? world.buoyancy->getWaterFrame() : identity;
+}
+
+/// World → water coordinates as a Bullet transform.
+btTransform worldToWater(const btWaterFrame& f) { return f.isIdentity() ? btTransform::getIdentity() : f.getTransform().inverse(); }
+
+Eigen::Vector3f waterVector(const btWaterFrame& f, const btVector3& v) {
+    return f.toWaterVector(Eigen::Vector3d(double(v.x()), double(v.y()), double(v.z()))).cast<float>();
+}
+
+Eigen::Vector3f waterPoint(const btWaterFrame& f, const btVector3& p) {
+    return f.toWaterPoint(Eigen::Vector3d(double(p.x()), double(p.y()), double(p.z()))).cast<float>();
+}
+
 }  // namespace
 
 Eigen::Vector3f bodyColour(std::size_t index) {
@@ -33,9 +52,11 @@ Eigen::Vector3f bodyColour(std::size_t index) {
 
 RenderCamera frameSceneCamera(const cli::Scene& scene, const cli::SceneWorld& world) {
     RenderCamera cam;
+    const btWaterFrame& frame = waterFrameOf(world);
+    const btTransform toWater = worldToWater(frame);
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = Eigen::Vector3d::Constant(-1e300);
     for (const auto& body : world.bodies) {
-        const btTransform t = body->getMeshWorldTransform();
+        const btTransform t = toWater * body->getMeshWorldTransform();
         const Eigen::Vector3d& c = body->getShape()->getBoundsCentre();
         const btVector3 w = t(btVector3(btScalar(c.x()), btScalar(c.y()), btScalar(c.z())));
         const double r = body->getShape()->getBoundsRadius();
@@ -52,7 +73,7 @@ RenderCamera frameSceneCamera(const cli::Scene& scene, const cli::SceneWorld& wo
     cam.fovDeg = 40.f;
     cam.distance = float(std::max(4.5, 1.0 * radius / std::sin(0.5 * cam.fovDeg * M_PI / 180.0)));
     // The scene's "camera" block overrides what it gives.
-    if (scene.camera.target) cam.target = scene.camera.target->cast<float>();
+    if (scene.camera.target) cam.target = frame.toWaterPoint(*scene.camera.target).cast<float>();
     if (scene.camera.distance) cam.distance = float(*scene.camera.distance);
     if (scene.camera.yaw) cam.yawDeg = float(*scene.camera.yaw);
     if (scene.camera.pitch) cam.pitchDeg = float(*scene.camera.pitch);
@@ -98,15 +119,18 @@ void buildSceneFrame(const cli::Scene& scene, const cli::SceneWorld& world, cons
         for (std::size_t k = 0; k < hs.size(); ++k) w.heights[k] = std::isfinite(hs[k]) ? float(hs[k]) : 0.f;
     }
 
+    // Everything below in water coordinates (waterFrameOf): n·p = d becomes (Rᵀn)·q = d − n·o.
+    const btWaterFrame& frame = waterFrameOf(world);
+    const btTransform toWater = worldToWater(frame);
     out.ground.visible = world.ground != nullptr;
-    out.ground.normal = world.groundNormal.cast<float>();
-    out.ground.offset = float(world.groundOffset);
+    out.ground.normal = frame.toWaterVector(world.groundNormal).cast<float>();
+    out.ground.offset = float(world.groundOffset - world.groundNormal.dot(frame.origin()));
 
     const bool arrows = options.arrows && int(world.bodies.size()) <= options.maxArrowBodies;
-    const double g = -scene.gravity.y();
+    const double g = scene.gravity.norm();
     for (std::size_t i = 0; i < world.bodies.size(); ++i) {
         const btBuoyantBody& body = *world.bodies[i];
-        const btTransform meshWorld = body.getMeshWorldTransform();
+        const btTransform meshWorld = toWater * body.getMeshWorldTransform();  // mesh → water coordinates
         RenderBody rb;
         rb.mesh = &body.getShape()->getMesh();
         rb.meshToWorld = toMatrix(meshWorld);
@@ -119,15 +143,17 @@ void buildSceneFrame(const cli::Scene& scene, const cli::SceneWorld& world, cons
             const double weight = body.getMass() * g;
             if (weight > 0) {
                 const double perNewton = options.arrowScale * body.getShape()->getBoundsRadius() / weight;
-                const Eigen::Vector3f com = toVec(body.getRigidBody()->getCenterOfMassPosition());
+                const Eigen::Vector3f com = waterPoint(frame, body.getRigidBody()->getCenterOfMassPosition());
                 const btBuoyancyResult& r = action->getLastResult();
                 out.arrows.push_back({com, Eigen::Vector3f(0.f, float(-weight * perNewton), 0.f),
                                       Eigen::Vector3f(0.9f, 0.1f, 0.1f)});
                 if (r.submergedVolume > 0)
-                    out.arrows.push_back({toVec(r.centreOfBuoyancy), toVec(r.buoyancyForce) * float(perNewton),
+                    out.arrows.push_back({waterPoint(frame, r.centreOfBuoyancy),
+                                          waterVector(frame, r.buoyancyForce) * float(perNewton),
                                           Eigen::Vector3f(0.1f, 0.8f, 0.2f)});
                 if (double(r.dragForce.length()) > 0.01 * weight)
-                    out.arrows.push_back({com, toVec(r.dragForce) * float(perNewton), Eigen::Vector3f(0.15f, 0.3f, 0.95f)});
+                    out.arrows.push_back({com, waterVector(frame, r.dragForce) * float(perNewton),
+                                          Eigen::Vector3f(0.15f, 0.3f, 0.95f)});
             }
         }
 

@@ -4,6 +4,9 @@
 /// water surface sampled from the scene's btWaterSurface on a grid, the ground plane, the force arrows
 /// (weight red at the centre of mass, buoyancy green at the centre of buoyancy, drag blue at the centre of
 /// mass) and, on request, the surface samples coloured wet (below the water height at their x, z) or dry.
+/// A frame is expressed in the scene's water frame (btBuoyancyWorld::getWaterFrame): the renderer's y is the water's
+/// up, so the picture, the orbit camera and the browser follow the up axis of a Z-up or oblique scene; the camera
+/// block's target is given in world coordinates and mapped. For a +y-up scene these are the world's coordinates.
 
 #include "scene/SceneFile.h"
 #include "scene/SceneWorld.h"

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -242,6 +243,34 @@ void readHeightCsv(const Reader& r, const std::string& path, const std::string& 
     if (w.gridNx < 2 || w.gridNz < 2) r.fail(key, path + ": needs at least 2 rows of at least 2 values");
 }
 
+/// Scene::waterFrame from "water.frame" (up, x, origin; each optional) and the scene's gravity: up defaults to
+/// −gravity (+y for a zero gravity), x to btWaterFrame::fromUp's choice. Refuses an x not perpendicular to up and an up
+/// not antiparallel to a non-zero gravity (1e-6 rad), naming both vectors.
+void resolveWaterFrame(const Reader& r, Scene& s) {
+    const SceneWater& w = s.water;
+    const double g = s.gravity.norm();
+    const Eigen::Vector3d origin = w.frameOrigin.value_or(Eigen::Vector3d::Zero());
+    const Eigen::Vector3d up = w.frameUp ? *w.frameUp : g > 0 ? Eigen::Vector3d(-s.gravity) : Eigen::Vector3d::UnitY();
+    try {
+        s.waterFrame = w.frameX ? btWaterFrame(origin, up, *w.frameX) : btWaterFrame::fromUp(up, origin);
+    } catch (const std::invalid_argument& e) {
+        std::string what = e.what();
+        const std::string prefix = "btWaterFrame: ";
+        if (what.compare(0, prefix.size(), prefix) == 0) what = what.substr(prefix.size());
+        r.fail(w.frameX ? "water.frame.x" : "water.frame.up", what);
+    }
+    if (g > 0) {
+        const double angle = s.waterFrame.angleToGravity(s.gravity);
+        if (!(angle <= 1e-6)) {
+            char buf[64];
+            std::snprintf(buf, sizeof buf, "%.6g", angle);
+            r.fail("water.frame.up", btWaterFrame::vectorText(up) + " is not antiparallel to the scene's gravity " +
+                                         btWaterFrame::vectorText(s.gravity) + " m/s^2 (" + buf +
+                                         " rad apart, 1e-6 allowed): the water is a height field along up = -gravity");
+        }
+    }
+}
+
 /// `refuseType` (optional): returns why a type cannot be used where this water is read ("" to accept it).
 void readWater(const Reader& r, const json& w, Scene& s, const std::string& directory,
                const SceneWaterTypeFilter& refuseType = {}) {
@@ -253,18 +282,30 @@ void readWater(const Reader& r, const json& w, Scene& s, const std::string& dire
         const std::string why = refuseType(t);
         if (!why.empty()) r.fail("water.type", why);
     }
-    if (t == "flat") r.allowKeys(w, "water", {"type", "height", "density", "current"});
-    else if (t == "gerstner") r.allowKeys(w, "water", {"type", "height", "density", "waves"});
-    else if (t == "grid") r.allowKeys(w, "water", {"type", "density", "file", "origin", "spacing", "periodic"});
+    if (t == "flat") r.allowKeys(w, "water", {"type", "height", "density", "current", "frame"});
+    else if (t == "gerstner") r.allowKeys(w, "water", {"type", "height", "density", "waves", "frame"});
+    else if (t == "grid") r.allowKeys(w, "water", {"type", "density", "file", "origin", "spacing", "periodic", "frame"});
     else if (t == "fft")
         r.allowKeys(w, "water", {"type", "height", "density", "resolution", "patch_size", "wind_speed", "wind_direction",
-                                 "spectrum", "choppiness", "seed"});
+                                 "spectrum", "choppiness", "seed", "frame"});
     else if (t == "interactive")
-        r.allowKeys(w, "water", {"type", "height", "density", "size", "centre", "resolution", "wave_speed", "damping"});
+        r.allowKeys(w, "water",
+                    {"type", "height", "density", "size", "centre", "resolution", "wave_speed", "damping", "frame"});
     else r.fail("water.type", "unknown value \"" + t + "\" (flat, gerstner, grid, fft or interactive)");
     if (w.contains("height")) s.waterHeight = r.number(w["height"], "water.height", -kBig, kBig);
     if (w.contains("density")) s.waterDensity = r.number(w["density"], "water.density", 0.0, 1e5, true);
-    const double g = -s.gravity.y();
+    const double g = s.gravity.norm();  // the waves' dispersion: |g| (9.81 when the scene has none)
+    if (w.contains("frame")) {
+        const json& f = w["frame"];
+        r.requireObject(f, "water.frame");
+        r.allowKeys(f, "water.frame", {"up", "x", "origin"});
+        if (f.contains("up")) out.frameUp = r.vec3(f["up"], "water.frame.up", -kBig, kBig);
+        if (f.contains("x")) out.frameX = r.vec3(f["x"], "water.frame.x", -kBig, kBig);
+        if (f.contains("origin")) out.frameOrigin = r.vec3(f["origin"], "water.frame.origin", -kBig, kBig);
+        if (out.frameUp && !(out.frameUp->norm() > 0)) r.fail("water.frame.up", "zero vector");
+        if (out.frameX && !(out.frameX->norm() > 0)) r.fail("water.frame.x", "zero vector");
+    }
+    resolveWaterFrame(r, s);
 
     if (t == "flat") {
         if (w.contains("current")) out.current = vec2(r, w["current"], "water.current", -kBig, kBig);
@@ -357,27 +398,27 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
                         "ground", "camera"});
     Scene s;
     s.directory = directory;
-    if (j.contains("gravity")) {
-        s.gravity = r.vec3(j["gravity"], "gravity", -1e3, 1e3);
-        if (s.gravity.x() != 0 || s.gravity.z() != 0 || !(s.gravity.y() < 0))
-            r.fail("gravity", "must point down y, e.g. [0, -9.81, 0] (the water is a height field in y)");
-    }
+    if (j.contains("gravity")) s.gravity = r.vec3(j["gravity"], "gravity", -1e3, 1e3);  // any direction, or zero
     if (j.contains("dt")) s.dt = r.number(j["dt"], "dt", 1e-6, 1.0, false);
     if (j.contains("substeps_per_frame")) s.substepsPerFrame = r.integer(j["substeps_per_frame"], "substeps_per_frame", 1, 1000);
     if (j.contains("duration")) s.duration = r.number(j["duration"], "duration", 0.0, 1e6);
     if (j.contains("output_interval")) s.outputInterval = r.number(j["output_interval"], "output_interval", 0.0, 1e6, true);
     if (j.contains("water")) readWater(r, j["water"], s, directory);
+    else resolveWaterFrame(r, s);  // the default frame of the gravity
     if (j.contains("ground")) {
         const json& g = j["ground"];
         r.requireObject(g, "ground");
         r.allowKeys(g, "ground", {"height", "normal"});
         s.groundHeight = g.contains("height") ? r.number(g["height"], "ground.height", -kBig, kBig) : 0.0;
-        if (g.contains("normal")) {  // a sloped floor (a beach) through (0, height, 0)
+        s.groundNormal = s.waterFrame.up();
+        if (g.contains("normal")) {  // a sloped floor (a beach) through the point at `height` along up
             s.groundNormal = r.vec3(g["normal"], "ground.normal", -kBig, kBig);
             if (!(s.groundNormal.norm() > 1e-12)) r.fail("ground.normal", "zero vector");
             s.groundNormal.normalize();
-            if (!(s.groundNormal.y() >= 0.1))
-                r.fail("ground.normal", "must point up (y component of the unit normal >= 0.1, slope <= 84 degrees)");
+            if (!(s.groundNormal.dot(s.waterFrame.up()) >= 0.1))
+                r.fail("ground.normal", "must point up (component of the unit normal along the water frame's up " +
+                                            btWaterFrame::vectorText(s.waterFrame.up()) +
+                                            " >= 0.1, slope <= 84 degrees)");
         }
     }
     if (j.contains("camera")) {  // the view of the pictures and the browser

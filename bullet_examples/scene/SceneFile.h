@@ -6,6 +6,7 @@
 
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/bullet/btWaterFrame.h>
 #include <BulletBuoyancy/water/btFftOceanSurface.h>
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 #include "scene/SceneGraph.h"
@@ -61,6 +62,9 @@ struct SceneWater {
     int resolution = 128;                          ///< interactive: cells along x
     double waveSpeed = 2.0;                        ///< interactive: c, m/s
     double damping = 0.1;                          ///< interactive: γ, 1/s
+    /// "frame": the water frame's up, first horizontal axis and origin (world) as given; absent: the default frame
+    /// of the scene's gravity (Scene::waterFrame holds the frame in use either way).
+    std::optional<Eigen::Vector3d> frameUp, frameX, frameOrigin;
 };
 
 /// The "camera" block: the view of `buoyancy run --png` and of the scene browser. Fields left out are
@@ -74,7 +78,10 @@ struct SceneCamera {
 
 /// A whole scene.
 struct Scene {
-    Eigen::Vector3d gravity = Eigen::Vector3d(0, -9.81, 0); ///< m/s², must point down y
+    Eigen::Vector3d gravity = Eigen::Vector3d(0, -9.81, 0); ///< m/s², any direction (zero: no buoyancy)
+    /// The water frame in use (btWaterFrame.h): "water.frame" when given, else the default of `gravity` (the identity
+    /// for a zero gravity). Its up is antiparallel to a non-zero gravity (checked by the loader).
+    btWaterFrame waterFrame;
     double dt = 1.0 / 240.0;          ///< fixed substep, s
     int substepsPerFrame = 4;         ///< stepSimulation(dt·n, n, dt)
     double duration = 10.0;           ///< s
@@ -83,8 +90,8 @@ struct Scene {
     double waterDensity = 1000.0;     ///< kg/m³
     SceneWater water;                 ///< surface type and parameters
     std::optional<double> groundHeight; ///< static floor y = h
-    /// Unit normal of the floor (world); the floor is the plane through (0, h, 0) with this normal (a sloped
-    /// beach when not +y). Key "ground.normal", default [0, 1, 0].
+    /// Unit normal of the floor (world); the floor is the plane through the point at height h along the water
+    /// frame's up (origin + h·up) with this normal (a sloped beach when not up). Key "ground.normal", default: up.
     Eigen::Vector3d groundNormal = Eigen::Vector3d::UnitY();
     std::vector<SceneBody> bodies;
     SceneCamera camera;               ///< "camera": the pictures' and the browser's view

@@ -14,7 +14,7 @@ namespace buoyancy::cli {
 
 SceneWaterSurface makeSceneWater(const Scene& scene) {
     const SceneWater& w = scene.water;
-    const double g = -scene.gravity.y();
+    const double g = scene.gravity.norm() > 0 ? scene.gravity.norm() : 9.81;  // the waves' dispersion
     SceneWaterSurface out;
     try {
         if (w.type == "gerstner") {

@@ -87,11 +87,17 @@ std::unique_ptr<SceneWorld> buildSceneWorld(const Scene& scene, double importTim
     SceneWaterSurface sceneWater = makeSceneWater(scene);
     w.water = std::move(sceneWater.surface);
     w.interactiveWater = sceneWater.interactive;
-    w.buoyancy = std::make_unique<btBuoyancyWorld>(&w.world, w.water.get(), scene.waterDensity);  // the world's gravity
+    // The world's gravity; the water frame as the loader resolved it (checked against the gravity there).
+    try {
+        w.buoyancy = std::make_unique<btBuoyancyWorld>(&w.world, w.water.get(), scene.waterFrame, scene.waterDensity);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("water.frame: ") + e.what());
+    }
     if (scene.groundHeight) {
-        // The plane through (0, h, 0) with the scene's normal (+y unless "ground.normal" slopes it).
+        // The plane through origin + h·up (the water frame's) with the scene's normal (up unless "ground.normal"
+        // slopes it).
         w.groundNormal = scene.groundNormal;
-        w.groundOffset = scene.groundNormal.y() * *scene.groundHeight;
+        w.groundOffset = scene.groundNormal.dot(scene.waterFrame.origin() + *scene.groundHeight * scene.waterFrame.up());
         w.groundShape = std::make_unique<btStaticPlaneShape>(
             btVector3(btScalar(w.groundNormal.x()), btScalar(w.groundNormal.y()), btScalar(w.groundNormal.z())),
             btScalar(w.groundOffset));

@@ -23,6 +23,7 @@
 #include <BulletBuoyancy/bullet/btFloodingAction.h>
 #include <BulletBuoyancy/bullet/btInteractiveWaterCoupler.h>
 #include <BulletBuoyancy/bullet/btTimeVaryingMassAction.h>
+#include <BulletBuoyancy/bullet/btWaterFrame.h>
 
 // Water surfaces.
 #include <BulletBuoyancy/water/btFftOceanSurface.h>

@@ -56,15 +56,18 @@ struct UserWorld {
 
 }  // namespace
 
-TEST_CASE("btBuoyancyWorld: a Z-up or oblique world is refused with both vectors named", "[bullet][gravity]") {
+TEST_CASE("btBuoyancyWorld: a water frame whose up is not antiparallel to gravity is refused with both vectors named",
+          "[bullet][gravity]") {
+    // A Z-up or oblique world is accepted (the default frame follows its gravity); an explicit frame against it is not.
     for (const btVector3 g : {btVector3(0, 0, -9.81f), btVector3(0, -9.81f, 0.5f)}) {
         UserWorld u(g);
+        CHECK_NOTHROW(btBuoyancyWorld(&u.world, &u.water, 1000.0));
         try {
-            btBuoyancyWorld context(&u.world, &u.water, 1000.0);
-            FAIL("accepted gravity (" << g.x() << ", " << g.y() << ", " << g.z() << ")");
+            btBuoyancyWorld context(&u.world, &u.water, btWaterFrame(), 1000.0);  // up +y
+            FAIL("accepted gravity (" << g.x() << ", " << g.y() << ", " << g.z() << ") with up +y");
         } catch (const std::invalid_argument& e) {
             const std::string message = e.what();
-            CHECK_THAT(message, Contains("does not point down the water's up axis (0, 1, 0)"));
+            CHECK_THAT(message, Contains("water frame's up (0, 1, 0) is not antiparallel to the world's gravity"));
             CHECK_THAT(message, Contains(g.z() < -1 ? "(0, 0, -9.81)" : "(0, -9.81, 0.5)"));
         }
     }
@@ -72,22 +75,30 @@ TEST_CASE("btBuoyancyWorld: a Z-up or oblique world is refused with both vectors
     CHECK_THROWS_WITH(btBuoyancyWorld(nullptr, &u.water, 1000.0), Contains("world: must not be null"));
 }
 
-TEST_CASE("btBuoyancyWorld without its world: a Z-up world gets no buoyancy and a status, not a push along y",
+TEST_CASE("btBuoyancyWorld without its world: a Z-up world takes its frame from the first gravity read, and floats",
           "[bullet][gravity]") {
-    // The constructor without a world cannot refuse; the first substep reads the gravity of the world stepping it.
+    // The constructor without a world cannot check; the first substep reads the gravity of the world stepping it and
+    // derives the default frame from it (up +z). Before the frame existed, the box was pushed 16 m along +y.
     UserWorld u(btVector3(0, 0, -9.81f));
     u.buoyancy = std::make_unique<btBuoyancyWorld>(&u.water, 1000.0, 9.81);
-    u.addBoard(-0.1);  // half in the water as y-up water sees it
-    u.run(1.0);
+    CHECK_FALSE(u.buoyancy->isWaterFrameFixed());
+    const auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(1.0, 0.8, 0.4));  // 0.4 m tall along z
+    btBuoyantBodySettings settings;
+    settings.density = 400;
+    u.body = std::make_unique<btBuoyantBody>(shape, settings,
+                                             btTransform(btQuaternion::getIdentity(), btVector3(0, 0, 0.1f)));
+    u.world.addRigidBody(u.body->getRigidBody());
+    u.action = std::make_unique<btBuoyancyAction>(*u.body, u.buoyancy.get());
+    u.world.addAction(u.action.get());
+    u.run(30.0);
+    CHECK(u.buoyancy->isWaterFrameFixed());
+    CHECK(u.buoyancy->getWaterFrame().up().isApprox(Eigen::Vector3d::UnitZ()));
     const btBuoyancyResult& r = u.action->getLastResult();
-    CHECK(r.status == btBuoyancyStatus::GravityNotAlongWaterUp);
-    CHECK_FALSE(r.applied);
-    CHECK(u.buoyancy->getGravityStatus() == btBuoyancyStatus::GravityNotAlongWaterUp);
-    CHECK_THAT(std::string(btBuoyancyStatusMessage(r.status)), Contains("does not point down"));
-    // Free fall along −z, nothing along y (before: pushed up 16 m along +y).
-    const btVector3 v = u.body->getRigidBody()->getLinearVelocity();
-    CHECK(double(v.z()) == Approx(-9.81).epsilon(0.01));
-    CHECK(std::fabs(double(v.y())) < 1e-6);
+    CHECK(r.status == btBuoyancyStatus::Ok);
+    CHECK(u.submergedFraction() == Approx(0.4).margin(0.004));  // Archimedes: s = 0.4
+    const btVector3 p = u.body->getRigidBody()->getCenterOfMassPosition();
+    CHECK(std::fabs(double(p.y())) < 1e-3);          // nothing along y
+    CHECK(double(p.z()) == Approx(0.2 - 0.16).margin(2e-3));  // draft 0.16 of 0.4 m: centre 0.04 above the water
 }
 
 TEST_CASE("btBuoyancyWorld follows the world's gravity: Moon, a change at run time, zero", "[bullet][gravity]") {
@@ -143,6 +154,8 @@ TEST_CASE("btBuoyancyWorld follows the world's gravity: Moon, a change at run ti
         u.world.setGravity(btVector3(0, 0, -9.81f));
         CHECK_NOTHROW(u.run(1.0));
         CHECK(u.action->getLastResult().status == btBuoyancyStatus::GravityNotAlongWaterUp);
+        CHECK_THAT(u.buoyancy->getGravityStatusMessage(),
+                   Contains("gravity (0, 0, -9.81) m/s^2 does not point down the water frame's up axis (0, 1, 0)"));
         u.world.setGravity(btVector3(0, -9.81f, 0));
         u.run(1.0);
         CHECK(u.action->getLastResult().applied);

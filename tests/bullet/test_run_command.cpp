@@ -132,7 +132,8 @@ TEST_CASE("scene errors name the key and nothing runs", "[bullet][run][errors]")
     expectUsageError(R"({"bodies": [{"shape": {"type": "sphere", "radius": 1}, "density": 1,
                                      "rotation": {"axis": [0,0,0], "degrees": 3}}]})",
                      "bodies[0].rotation.axis: zero axis");
-    expectUsageError(R"({"gravity": [0, 0, -9.81], "bodies": []})", "gravity");
+    expectUsageError(R"({"gravity": [0, 0, -9.81], "water": {"frame": {"up": [0, 1, 0]}}, "bodies": []})",
+                     "water.frame.up: (0, 1, 0) is not antiparallel to the scene's gravity (0, 0, -9.81)");
     expectUsageError(R"({"dt": 0, "bodies": []})", "dt");
     expectUsageError(R"({"bodies": [{"shape": {"type": "box", "size": [1,1,1]}, "density": 5,
                                      "buoyancy": {"method": "magic"}}]})",

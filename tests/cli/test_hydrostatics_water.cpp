@@ -181,6 +181,8 @@ TEST_CASE("hydrostatics --water: bad water files exit 2 naming the file and the 
     writeJson(dir + "/looping.json",
               {{"type", "gerstner"}, {"waves", {{{"amplitude", 5}, {"wavelength", 10}, {"steepness", 1}}}}});
     writeJson(dir + "/interactive.json", {{"type", "interactive"}, {"size", {10, 10}}});
+    writeJson(dir + "/frame_up.json", {{"type", "flat"}, {"frame", {{"up", {0, 0, 1}}}}});
+    writeJson(dir + "/frame_shifted.json", {{"type", "flat"}, {"frame", {{"origin", {0, 1, 0}}}}});
     struct Case {
         std::string file;
         std::vector<std::string> message;
@@ -195,6 +197,10 @@ TEST_CASE("hydrostatics --water: bad water files exit 2 naming the file and the 
         {dir + "/bad_wave.json", {"waves[0].wavelength"}},
         {dir + "/looping.json", {"loop"}},
         {dir + "/interactive.json", {"simulation", "buoyancy run"}},
+        // The command's world is y-up in the water's own coordinates: another up is against its gravity, another
+        // frame would be ignored.
+        {dir + "/frame_up.json", {"frame.up: (0, 0, 1) is not antiparallel to the scene's gravity (0, -9.81, 0)"}},
+        {dir + "/frame_shifted.json", {"frame:", "--rotate / --translate"}},
     };
     for (const auto& c : cases) {
         const auto r = runCli({"hydrostatics", obj, "--water", c.file, "--json"});

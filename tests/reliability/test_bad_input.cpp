@@ -471,8 +471,9 @@ TEST_CASE("bad input: scene files name the file and the key", "[reliability][bad
     CHECK_THROWS_WITH(scene(body, "\"dt\": -0.01, "), Equals("s.json: dt: value -0.01 out of range [1e-06, 1]"));
     CHECK_THROWS_WITH(scene(body, "\"substeps_per_frame\": 0, "),
                       Equals("s.json: substeps_per_frame: value 0 out of range [1, 1000]"));
-    CHECK_THROWS_WITH(scene(body, "\"gravity\": [1, -9.81, 0], "),
-                      Equals("s.json: gravity: must point down y, e.g. [0, -9.81, 0] (the water is a height field in y)"));
+    CHECK_THROWS_WITH(scene(body, "\"gravity\": [0, 0, -9.81], \"water\": {\"frame\": {\"up\": [0, 1, 0]}}, "),
+                      Equals("s.json: water.frame.up: (0, 1, 0) is not antiparallel to the scene's gravity (0, 0, -9.81) "
+                             "m/s^2 (1.5708 rad apart, 1e-6 allowed): the water is a height field along up = -gravity"));
     CHECK_THROWS_WITH(scene("{" + kBox + ", \"density\": -5}"),
                       Equals("s.json: bodies[0].density: value -5 out of range (0, 1e+06]"));
     CHECK_THROWS_WITH(scene("{" + kBox + ", \"density\": 0}"),

@@ -246,11 +246,14 @@ void btBuoyancyAction::dragEvaluationVelocity(const buoyancy::HydrostaticsResult
     const double m = 1.0 / double(m_body->getInvMass());
     const double ma = m_settings.addedMass ? m_settings.addedMassCoefficient * rho * std::max(h.submerged_volume, 0.0) : 0.0;
     const double meff = m + ma;
-    const Eigen::Vector3d gravityAcc = toEigen(m_body->getGravity());
-    v = toEigen(m_body->getLinearVelocity());
-    w = toEigen(m_body->getAngularVelocity());
+    // In the water frame, as h (btWaterFrame: a rotation of the world's vectors).
+    const btWaterFrame& frame = m_world->getWaterFrame();
+    const Eigen::Vector3d gravityAcc = frame.toWaterVector(toEigen(m_body->getGravity()));
+    v = frame.toWaterVector(toEigen(m_body->getLinearVelocity()));
+    w = frame.toWaterVector(toEigen(m_body->getAngularVelocity()));
     v += ((h.force - ma * gravityAcc) * dt) / meff + gravityAcc * dt;
-    w += toEigen(m_body->getInvInertiaTensorWorld() * toBullet(Eigen::Vector3d(h.torque * dt)));
+    w += frame.toWaterVector(toEigen(m_body->getInvInertiaTensorWorld() *
+                                     toBullet(frame.toWorldVector(Eigen::Vector3d(h.torque * dt)))));
 }
 
 void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) {
@@ -296,8 +299,11 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     const double time = m_world->getTime();
     const double rho = m_world->getFluidDensity();
     const double g = m_world->getGravity();
-    const Eigen::Isometry3d pose = toEigen(m_body->getWorldTransform() * getMeshInComFrame());
-    const Eigen::Vector3d com = toEigen(m_body->getCenterOfMassPosition());
+    // Everything below is evaluated in the water frame (btWaterFrame: the surface is y = f(x, z, t) there); the
+    // impulses and the result are mapped back to the world at the end. Identity for a +y-up world.
+    const btWaterFrame& frame = m_world->getWaterFrame();
+    const Eigen::Isometry3d pose = frame.toWater(toEigen(m_body->getWorldTransform() * getMeshInComFrame()));
+    const Eigen::Vector3d com = frame.toWaterPoint(toEigen(m_body->getCenterOfMassPosition()));
     // A NaN/Inf pose (set by the user, or a body Bullet already lost) is refused here: nothing below may
     // throw through Bullet's stepSimulation (clippedHydrostatics threw invalid_argument).
     if (!pose.matrix().allFinite() || !com.allFinite()) {
@@ -410,7 +416,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     const double m = 1.0 / double(m_body->getInvMass());
     const double ma = m_settings.addedMass ? m_settings.addedMassCoefficient * rho * std::max(h.submerged_volume, 0.0) : 0.0;
     const double meff = m + ma;
-    const Eigen::Vector3d gravityAcc = toEigen(m_body->getGravity());
+    const Eigen::Vector3d gravityAcc = frame.toWaterVector(toEigen(m_body->getGravity()));
 
     // Drag is evaluated at the velocity the next substep will integrate: this substep's hydrostatic kick
     // plus the gravity kick Bullet applies next. At rest in equilibrium that is exactly 0, so drag cannot
@@ -456,6 +462,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
         Eigen::Matrix3d R;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) R(i, j) = double(basis[i][j]);
+        if (!frame.isIdentity()) R = frame.rotation().transpose() * R;  // body → water axes, as w and L
         const Eigen::Vector3d wl = R.transpose() * w, Ll = R.transpose() * L;
         double rotE = 0, rotD = 0;
         for (int k = 0; k < 3; ++k) {
@@ -479,12 +486,13 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
         (m / meff) * ((prime * (h.force - ma * gravityAcc) + dragF) * dt);
     const Eigen::Vector3d angularImpulse = (prime * h.torque + dragT) * dt;
 
+    // Back to the world (the result and the impulses are world-frame).
     m_result.submergedVolume = h.submerged_volume;
-    m_result.centreOfBuoyancy = toBullet(h.centre_of_buoyancy);
-    m_result.buoyancyForce = toBullet(h.force);
-    m_result.buoyancyTorque = toBullet(h.torque);
-    m_result.dragForce = toBullet(dragF);
-    m_result.dragTorque = toBullet(dragT);
+    m_result.centreOfBuoyancy = toBullet(frame.toWorldPoint(h.centre_of_buoyancy));
+    m_result.buoyancyForce = toBullet(frame.toWorldVector(h.force));
+    m_result.buoyancyTorque = toBullet(frame.toWorldVector(h.torque));
+    m_result.dragForce = toBullet(frame.toWorldVector(dragF));
+    m_result.dragTorque = toBullet(frame.toWorldVector(dragT));
     m_result.wettedArea = h.wetted_area;
     m_result.waterlineArea = h.waterline_area;
     m_result.addedMass = ma;
@@ -492,7 +500,7 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     m_result.predicted = predicted;
     // Never write NaN/Inf into a body (design.md 3): checked after rounding to btScalar (a finite double
     // can overflow a float) and on the velocities the impulses would give.
-    const btVector3 J = toBullet(linearImpulse), L = toBullet(angularImpulse);
+    const btVector3 J = toBullet(frame.toWorldVector(linearImpulse)), L = toBullet(frame.toWorldVector(angularImpulse));
     const btVector3 v1 = m_body->getLinearVelocity() + J * m_body->getInvMass() * m_body->getLinearFactor();
     const btVector3 w1 = m_body->getAngularVelocity() + m_body->getInvInertiaTensorWorld() * L * m_body->getAngularFactor();
     if (!linearImpulse.allFinite() || !angularImpulse.allFinite() || !toEigen(v1).allFinite() ||

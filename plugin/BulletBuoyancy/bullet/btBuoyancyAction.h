@@ -111,6 +111,7 @@ public:
     const buoyancy::SurfaceSamples& getSamplesInUse() const;
     /// The velocities drag is evaluated at, given this substep's hydrostatics `h` (see updateAction): the body's
     /// velocity plus this substep's hydrostatic kick (with added mass) plus the gravity kick of the next one.
+    /// `h`, v and w are in the world's water frame (btBuoyancyWorld::getWaterFrame; the world's axes for +y up).
     /// Public so a batching backend evaluates every body's drag at exactly the velocity the action would.
     /// @param dt  substep, s   @param[out] v  m/s   @param[out] w  rad/s
     void dragEvaluationVelocity(const buoyancy::HydrostaticsResult& h, double dt, Eigen::Vector3d& v,

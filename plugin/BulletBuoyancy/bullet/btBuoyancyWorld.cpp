@@ -11,12 +11,12 @@
 #include <string>
 
 namespace {
-/// Largest angle between the world's gravity and the water's down direction still taken as "down", rad.
+/// Largest angle between the world's gravity and the water frame's down direction still taken as "down", rad.
 constexpr double kGravityAngleTolerance = 1e-6;
 
-std::string vectorText(double x, double y, double z) {
-    char buf[128];
-    std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", x, y, z);
+std::string angleText(double radians) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.6g", radians);
     return buf;
 }
 }  // namespace
@@ -26,7 +26,7 @@ const char* btBuoyancyStatusMessage(btBuoyancyStatus status) {
     case btBuoyancyStatus::Ok: return "ok";
     case btBuoyancyStatus::NoGravity: return "the world's gravity is zero: no pressure gradient, no buoyancy";
     case btBuoyancyStatus::GravityNotAlongWaterUp:
-        return "the world's gravity does not point down the water's up axis (0, 1, 0): no buoyancy";
+        return "the world's gravity does not point down the water frame's up axis: no buoyancy";
     }
     return "unknown status";
 }
@@ -36,30 +36,78 @@ btBuoyancyWorld::btBuoyancyWorld(btDynamicsWorld* world, const btWaterSurface* w
     if (!world) throw std::invalid_argument("btBuoyancyWorld: world: must not be null");
     setFluidDensity(fluidDensity);
     const btVector3 g = world->getGravity();
-    followGravity(double(g.x()), double(g.y()), double(g.z()));
-    if (m_gravityStatus == btBuoyancyStatus::GravityNotAlongWaterUp)
-        throw std::invalid_argument("btBuoyancyWorld: the world's gravity " +
-                                    vectorText(double(g.x()), double(g.y()), double(g.z())) +
-                                    " m/s^2 does not point down the water's up axis (0, 1, 0): the water surfaces are "
-                                    "height fields along +y, so give the world a gravity along -y");
+    const Eigen::Vector3d gv(double(g.x()), double(g.y()), double(g.z()));
+    if (!gv.allFinite())
+        throw std::invalid_argument("btBuoyancyWorld: the world's gravity " + btWaterFrame::vectorText(gv) +
+                                    " m/s^2 is not finite");
+    followGravity(gv.x(), gv.y(), gv.z());  // derives the frame from a non-zero gravity
+}
+
+btBuoyancyWorld::btBuoyancyWorld(btDynamicsWorld* world, const btWaterSurface* water, const btWaterFrame& frame,
+                                 double fluidDensity)
+    : m_dynamicsWorld(world), m_water(water), m_fluidDensity(1000.0), m_gravity(9.81) {
+    if (!world) throw std::invalid_argument("btBuoyancyWorld: world: must not be null");
+    setFluidDensity(fluidDensity);
+    const btVector3 g = world->getGravity();
+    m_gravityVector = Eigen::Vector3d(double(g.x()), double(g.y()), double(g.z()));
+    m_gravityKnown = true;
+    setWaterFrame(frame);  // checks it against the world's gravity, and sets the status
 }
 
 btBuoyancyWorld::btBuoyancyWorld(const btWaterSurface* water, double fluidDensity, double gravity)
     : m_water(water), m_fluidDensity(1000.0), m_gravity(9.81) {
     setFluidDensity(fluidDensity);
     setGravity(gravity);
+    m_gravityKnown = false;  // the world stepping the actions tells (beginSubstepIfNew)
+}
+
+void btBuoyancyWorld::setWaterFrame(const btWaterFrame& frame) {
+    if (m_dynamicsWorld) {  // the world's gravity now (it may have changed since the last substep)
+        const btVector3 g = m_dynamicsWorld->getGravity();
+        m_gravityVector = Eigen::Vector3d(double(g.x()), double(g.y()), double(g.z()));
+        m_gravityKnown = true;
+    }
+    const double magnitude = m_gravityVector.norm();
+    if (m_gravityKnown && std::isfinite(magnitude) && magnitude > 0) {
+        const double angle = frame.angleToGravity(m_gravityVector);
+        if (!(angle <= kGravityAngleTolerance))
+            throw std::invalid_argument(
+                "btBuoyancyWorld: the water frame's up " + btWaterFrame::vectorText(frame.up()) +
+                " is not antiparallel to the world's gravity " + btWaterFrame::vectorText(m_gravityVector) +
+                " m/s^2 (" + angleText(angle) + " rad apart, 1e-6 allowed): give the frame up = -gravity");
+    }
+    m_frame = frame;
+    m_frameFixed = true;
+    if (m_gravityKnown) followGravity(m_gravityVector.x(), m_gravityVector.y(), m_gravityVector.z());  // the status
+}
+
+std::string btBuoyancyWorld::getGravityStatusMessage() const {
+    switch (m_gravityStatus) {
+    case btBuoyancyStatus::Ok: return "ok";
+    case btBuoyancyStatus::NoGravity: return btBuoyancyStatusMessage(m_gravityStatus);
+    case btBuoyancyStatus::GravityNotAlongWaterUp:
+        return "the world's gravity " + btWaterFrame::vectorText(m_gravityVector) +
+               " m/s^2 does not point down the water frame's up axis " + btWaterFrame::vectorText(m_frame.up()) +
+               ": no buoyancy";
+    }
+    return "unknown status";
 }
 
 void btBuoyancyWorld::followGravity(double gx, double gy, double gz) {
-    const double magnitude = std::sqrt(gx * gx + gy * gy + gz * gz);
+    m_gravityVector = Eigen::Vector3d(gx, gy, gz);
+    m_gravityKnown = true;
+    const double magnitude = m_gravityVector.norm();
     if (!std::isfinite(magnitude) || magnitude == 0.0) {
         m_gravity = 0.0;
         m_gravityStatus = std::isfinite(magnitude) ? btBuoyancyStatus::NoGravity : btBuoyancyStatus::GravityNotAlongWaterUp;
         return;
     }
-    // Angle between g and the water's down (0, −1, 0), from the horizontal part (accurate at small angles).
-    const double angle = std::atan2(std::hypot(gx, gz), -gy);
-    if (angle > kGravityAngleTolerance) {
+    // The default frame follows the first non-zero gravity and stays (a later change is checked against it).
+    if (!m_frameFixed) {
+        m_frame = btWaterFrame::fromGravity(m_gravityVector);
+        m_frameFixed = true;
+    }
+    if (!(m_frame.angleToGravity(m_gravityVector) <= kGravityAngleTolerance)) {
         m_gravity = 0.0;
         m_gravityStatus = btBuoyancyStatus::GravityNotAlongWaterUp;
         return;
@@ -81,6 +129,9 @@ void btBuoyancyWorld::setGravity(double g) {
         throw std::invalid_argument("gravity: must be a finite number >= 0 (got " + std::to_string(g) + ")");
     m_gravity = g;
     m_gravityStatus = g > 0.0 ? btBuoyancyStatus::Ok : btBuoyancyStatus::NoGravity;
+    // Gravity along the water frame's down (for actions stepped without a dynamics world).
+    m_gravityVector = -g * m_frame.up();
+    m_gravityKnown = true;
 }
 
 void btBuoyancyWorld::beginSubstepIfNew(std::uint64_t& lastSeen, double dt, const btCollisionWorld* from) {

@@ -7,8 +7,12 @@
 ///
 /// Gravity is the world's: the context reads it from the btDynamicsWorld every substep, so a change at run time is
 /// followed. The pressure gradient belongs to the water, so buoyancy uses the world's gravity; a body's own gravity
-/// (btRigidBody::setGravity) is its weight only (design.md 3). The water surfaces are height fields along +y: a
-/// world whose gravity does not point down y (within 1e-6 rad) gets no buoyancy, with a status saying why.
+/// (btRigidBody::setGravity) is its weight only (design.md 3). "Up" is −ĝ of the world: the water surface is a height
+/// field along up in the context's water frame (btWaterFrame: by default derived from the world's gravity, or set
+/// explicitly). A frame whose up is not antiparallel to the world's gravity (beyond 1e-6 rad) is refused; gravity
+/// turned away from it later gives the bodies no buoyancy, with a status saying why.
+
+#include <BulletBuoyancy/bullet/btWaterFrame.h>
 
 #include <cstdint>
 #include <memory>
@@ -26,7 +30,7 @@ class btDynamicsWorld;
 enum class btBuoyancyStatus {
     Ok,                     ///< buoyancy computed (or nothing to compute: dry, asleep)
     NoGravity,              ///< the world's gravity is zero: no pressure gradient, so no buoyancy
-    GravityNotAlongWaterUp, ///< the world's gravity does not point down the water's up axis (0, 1, 0)
+    GravityNotAlongWaterUp, ///< the world's gravity does not point down the water frame's up axis (or is not finite)
 };
 
 /// One sentence for logs and messages, e.g. "the world's gravity is zero: no buoyancy".
@@ -45,9 +49,16 @@ public:
     /// @param world         the dynamics world the actions are added to; not owned, must outlive the context
     /// @param water         the water surface; not owned, must outlive the context (nullptr: no water)
     /// @param fluidDensity  ρ_w, kg/m³ (fresh water 1000, sea water 1025), > 0
-    /// @throws std::invalid_argument for a null world, a bad density, or a world whose gravity is neither zero nor
-    ///         pointing down y (the message names the gravity and the water's up)
+    /// The water frame is the default one of the world's gravity (btWaterFrame::fromGravity: up = −ĝ, first
+    /// horizontal axis +x whenever up ⟂ x); in a world without gravity at construction, it is derived from the first
+    /// non-zero gravity read at a substep.
+    /// @throws std::invalid_argument for a null world, a bad density or a non-finite gravity
     btBuoyancyWorld(btDynamicsWorld* world, const btWaterSurface* water, double fluidDensity = 1000.0);
+    /// The context of `world` with an explicit water frame (the surface is a height field along frame.up()).
+    /// @throws std::invalid_argument for a null world, a bad density, or a frame whose up is not antiparallel to the
+    ///         world's non-zero gravity within 1e-6 rad (the message names both vectors)
+    btBuoyancyWorld(btDynamicsWorld* world, const btWaterSurface* water, const btWaterFrame& frame,
+                    double fluidDensity = 1000.0);
     /// A context without its dynamics world at hand. `gravity` (the magnitude g of (0, −g, 0), m/s², ≥ 0) is used
     /// until the first substep; from then on the gravity of the world the actions are stepped in is read every
     /// substep, as with the other constructor (the two can no longer disagree). Prefer the other constructor.
@@ -67,11 +78,32 @@ public:
     void setFluidDensity(double density);
     /// g, m/s²: the magnitude of the world's gravity in the current substep (0 when its status is not Ok).
     double getGravity() const { return m_gravity; }
+    /// The world's gravity vector last read, m/s², world ((0, −g, 0) until a world was read, for the constructor
+    /// without one).
+    const Eigen::Vector3d& getGravityVector() const { return m_gravityVector; }
+
+    ///@name Water frame (btWaterFrame.h, design.md 3)
+    /// The frame the water surface is a height field in: every body's pose and velocities are mapped into it and its
+    /// forces and torques back; a surface's heights are measured along its up, its x, z coordinates are the frame's
+    /// horizontal axes.
+    const btWaterFrame& getWaterFrame() const { return m_frame; }
+    /// Set the water frame explicitly (it no longer follows the first gravity read). The dynamics world's gravity is
+    /// read now (so set the world's gravity first when turning a whole scene).
+    /// @throws std::invalid_argument when the world's gravity is known, non-zero and not antiparallel to frame.up()
+    ///         within 1e-6 rad (the message names both vectors); the frame is then unchanged
+    void setWaterFrame(const btWaterFrame& frame);
+    /// True when the frame was set explicitly or derived from a gravity already (false: it is still the default
+    /// y-up frame waiting for the first non-zero gravity).
+    bool isWaterFrameFixed() const { return m_frameFixed; }
+    ///@}
     /// Set g, m/s², for actions stepped without a dynamics world; overwritten at the next substep by the gravity of
     /// the world the actions are stepped in. @throws std::invalid_argument for a negative or non-finite value
     void setGravity(double g);
     /// Whether the world's gravity allows buoyancy in the current substep, and if not why.
     btBuoyancyStatus getGravityStatus() const { return m_gravityStatus; }
+    /// The status as a sentence naming the gravity and the water frame's up, e.g. "the world's gravity
+    /// (0, 0, -9.81) m/s^2 does not point down the water frame's up axis (0, 1, 0): no buoyancy".
+    std::string getGravityStatusMessage() const;
     /// The dynamics world given to the constructor (nullptr for the constructor without one).
     btDynamicsWorld* getDynamicsWorld() const { return m_dynamicsWorld; }
 
@@ -124,6 +156,10 @@ private:
     const btWaterSurface* m_water;
     double m_fluidDensity;
     double m_gravity;
+    Eigen::Vector3d m_gravityVector = Eigen::Vector3d(0, -9.81, 0);
+    bool m_gravityKnown = false;  ///< m_gravityVector was read from a world (or given)
+    btWaterFrame m_frame;
+    bool m_frameFixed = false;    ///< set explicitly, or derived from a non-zero gravity
     btBuoyancyStatus m_gravityStatus = btBuoyancyStatus::Ok;
     double m_time = 0;
     std::uint64_t m_substep = 0;

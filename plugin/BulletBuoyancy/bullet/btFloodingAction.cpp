@@ -19,7 +19,7 @@ btFloodingAction::btFloodingAction(btBuoyantBody& body, btBuoyancyWorld* world, 
     if (!(body.getMass() > 0)) throw std::invalid_argument("body: a fixed body cannot hold water");
     m_dry = body.getMassProperties();
     setPermeableSamples(std::move(holes));
-    m_state.setPose(buoyancy::toEigen(body.getMeshWorldTransform()));
+    m_state.setPose(m_world->getWaterFrame().toWater(buoyancy::toEigen(body.getMeshWorldTransform())));
     updateBodyMassProperties();
 }
 
@@ -68,7 +68,8 @@ void btFloodingAction::updateAction(btCollisionWorld*, btScalar deltaTimeStep) {
     if (!(dt > 0) || !std::isfinite(dt)) return;
     btRigidBody* rb = m_body->getRigidBody();
     if (!rb->getBroadphaseHandle() || rb->getInvMass() == btScalar(0)) return;
-    const Eigen::Isometry3d pose = buoyancy::toEigen(m_body->getMeshWorldTransform());
+    // In the water frame (btWaterFrame): heights and levels along its up, the surface's own coordinates.
+    const Eigen::Isometry3d pose = m_world->getWaterFrame().toWater(buoyancy::toEigen(m_body->getMeshWorldTransform()));
     if (!pose.matrix().allFinite()) return;
     m_state.setPose(pose);
     const double before = m_state.totalWater();

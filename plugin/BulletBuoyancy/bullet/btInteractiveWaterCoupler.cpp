@@ -32,8 +32,11 @@ void btInteractiveWaterCoupler::updateAction(btCollisionWorld*, btScalar deltaTi
             const btTransform pose = a->getRigidBody()->getWorldTransform() * a->getMeshInComFrame();
             const Eigen::Vector3d& c = a->getShape()->getBoundsCentre();
             const btVector3 centre = pose * btVector3(btScalar(c.x()), btScalar(c.y()), btScalar(c.z()));
-            now.x = double(centre.x());
-            now.z = double(centre.z());
+            // The surface's own (water-frame) horizontal coordinates.
+            const Eigen::Vector3d q = m_world->getWaterFrame().toWaterPoint(
+                Eigen::Vector3d(double(centre.x()), double(centre.y()), double(centre.z())));
+            now.x = q.x();
+            now.z = q.z();
             now.volume = r.submergedVolume;
             now.radius = a->getShape()->getBoundsRadius();
         }

@@ -477,8 +477,10 @@ struct btOpenClBuoyancyBackend::Impl {
             if (!b->isActive() && !waves) continue;
             const btBuoyancyShape& shape = *a->getShape();
             if (shape.getMethod() == btBuoyancyMethod::ExactMesh || !a->getSettings().buoyancyEnabled) continue;
-            const Eigen::Isometry3d pose = toEigen(b->getWorldTransform() * a->getMeshInComFrame());
-            const Eigen::Vector3d com = toEigen(b->getCenterOfMassPosition());
+            // In the water frame, as btBuoyancyAction::updateAction (the action maps the results back).
+            const btWaterFrame& frame = world->getWaterFrame();
+            const Eigen::Isometry3d pose = frame.toWater(toEigen(b->getWorldTransform() * a->getMeshInComFrame()));
+            const Eigen::Vector3d com = frame.toWaterPoint(toEigen(b->getCenterOfMassPosition()));
             if (!pose.matrix().allFinite() || !com.allFinite()) continue;
             const btBuoyancyDeformable* def = a->getDeformable().get();
             const Eigen::Vector3d bc = pose * (def ? def->getBoundsCentre() : shape.getBoundsCentre());
