@@ -94,6 +94,14 @@ std::vector<btGerstnerWave> p3Sea() {
 namespace {
 std::vector<btGerstnerWave> sea() { return p3Sea(); }
 
+/// The scaling sea without its third-derivative scale: the exact-mesh default then models the water over each triangle
+/// as the plane through its corners' heights (the model before the curved-water default), still with the wave patch.
+class PlaneGerstnerWaterSurface : public btGerstnerWaterSurface {
+public:
+    using btGerstnerWaterSurface::btGerstnerWaterSurface;
+    double heightThirdDerivativeScale(double) const override { return 0.0; }
+};
+
 }  // namespace
 
 double floatingHeight(const TriangleMesh& mesh, double volume, double densityRatio) {
@@ -135,7 +143,9 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
     const double spacing = 4.0 * (hi - lo).maxCoeff();  // four body lengths
     const double density = 500.0;
     const double floating = floatingHeight(mesh, shape->getUnitSolid().volume, density / 1000.0);
-    const btGerstnerWaterSurface water(sea());
+    const btGerstnerWaterSurface curvedWater(sea());
+    const PlaneGerstnerWaterSurface planeWater(sea());
+    const btGerstnerWaterSurface& water = o.planeWater ? planeWater : curvedWater;
     const double dt = 1.0 / o.substepsPerSecond;
     for (const std::string& driver : o.drivers) {
     if (driver != "world" && driver != "bench") throw std::invalid_argument("scaling: unknown driver '" + driver + "'");

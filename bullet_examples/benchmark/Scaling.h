@@ -38,6 +38,9 @@ struct ScalingOptions {
     int substepsPerSecond = 240;               ///< fixed substep rate
     btBuoyancySettings settings;               ///< buoyancy settings of every body (default: the library's)
     std::string variant;                       ///< label of `settings` in the CSV (empty: the defaults)
+    /// The water over each triangle as the plane through its corners' heights (the exact-mesh model on waves before the
+    /// curved-water default): the same sea, declaring no third-derivative scale. For comparison rows only.
+    bool planeWater = false;
 };
 
 /// One row of scaling.csv.
