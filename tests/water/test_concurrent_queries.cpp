@@ -75,8 +75,9 @@ std::vector<std::pair<std::string, std::unique_ptr<btWaterSurface>>> everySurfac
 TEST_CASE("water surfaces: concurrent queries with per-caller caches give the one-after-the-other answers",
           "[water][threads]") {
     const int callers = 4, substeps = 12;
-    for (const auto& [name, water] : everySurface()) {
-        INFO(name);
+    for (const auto& entry : everySurface()) {
+        INFO(entry.first);
+        const btWaterSurface* water = entry.second.get();
         std::vector<std::vector<double>> sequential(callers), concurrent(callers);
         for (int c = 0; c < callers; ++c) sequential[std::size_t(c)] = callerQueries(*water, c, substeps);
         std::vector<std::thread> threads;
