@@ -133,7 +133,7 @@ int runBench(const BenchOptions& o) {
         scale = runScaling(boat, "boat-x4", so, log);
         if (!o.quick) {
             // The same fleets with the water over each triangle as a plane (the exact-mesh model before the
-            // curved-water default, ≈ 10× cheaper on these waves): what the threads give at that cost.
+            // curved-water default, ≈ 4–5× cheaper on these waves): what the threads give at that cost.
             ScalingOptions plane = so;
             plane.bodies = {1000, 1500, 2000};
             plane.planeWater = true;
