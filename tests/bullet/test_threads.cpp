@@ -437,3 +437,47 @@ TEST_CASE("threads: setThreads and getThreads", "[bullet][threads]") {
     CHECK(w.getThreads() == 1);
     CHECK(w.getBatching());
 }
+
+namespace {
+/// A task scheduler as a user's threaded Bullet would install one: parallelFor on two std::threads, counting its calls.
+class TwoThreadScheduler : public btITaskScheduler {
+public:
+    TwoThreadScheduler() : btITaskScheduler("test two threads") {}
+    int getMaxNumThreads() const override { return 2; }
+    int getNumThreads() const override { return 2; }
+    void setNumThreads(int) override {}
+    void parallelFor(int begin, int end, int grain, const btIParallelForBody& body) override {
+        ++calls;
+        const int mid = begin + std::max(grain, (end - begin) / 2);
+        std::thread other([&] { body.forLoop(std::min(mid, end), end); });
+        body.forLoop(begin, std::min(mid, end));
+        other.join();
+    }
+    btScalar parallelSum(int begin, int end, int, const btIParallelSumBody& body) override {
+        return body.sumLoop(begin, end);
+    }
+    std::atomic<int> calls{0};
+};
+}  // namespace
+
+TEST_CASE("threads: a Bullet task scheduler with threads runs the batch, with the same results", "[bullet][threads]") {
+    FleetOptions o;
+    o.threads = 1;  // the scheduler's thread count applies instead
+    const int frames = 30;
+    const auto reference = runFleet(o, frames);
+    TwoThreadScheduler scheduler;
+    btITaskScheduler* previous = btGetTaskScheduler();
+    btSetTaskScheduler(&scheduler);
+    std::vector<unsigned char> withScheduler;
+    int threads = 0;
+    {
+        Fleet f(o);
+        threads = f.water.getThreads();
+        f.run(frames);
+        withScheduler = f.fingerprint();
+    }
+    btSetTaskScheduler(previous);
+    CHECK(threads == 2);
+    CHECK(scheduler.calls == frames * 4);  // one batch per substep
+    CHECK(withScheduler == reference);
+}
