@@ -138,12 +138,14 @@ def scaling(d):
     if not os.path.exists(p): return
     rows = read(p)
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
-    variants = sorted({r.get("variant", "") for r in rows})
-    for v in variants:
-        for t in sorted({int(r["threads"]) for r in rows if r.get("variant", "") == v}):
-            rs = sorted((r for r in rows if int(r["threads"]) == t and r.get("variant", "") == v), key=lambda r: int(r["bodies"]))
+    # one line per (variant, driver, threads): driver `world` = the public API, `bench` = the benchmark's own driver
+    variants = sorted({(r.get("variant", ""), r.get("driver", "bench")) for r in rows})
+    for v, drv in variants:
+        sel = [r for r in rows if r.get("variant", "") == v and r.get("driver", "bench") == drv]
+        for t in sorted({int(r["threads"]) for r in sel}):
+            rs = sorted((r for r in sel if int(r["threads"]) == t), key=lambda r: int(r["bodies"]))
             x = [int(r["bodies"]) for r in rs]
-            tag = f", {v}" if v else ""
+            tag = (f", {v}" if v else "") + (f", {drv} driver" if drv != "world" else "")
             ax.plot(x, [float(r["ns_per_body_substep_total"]) / 1e3 for r in rs], "-o", label=f"total, {t} thread(s){tag}")
             ax.plot(x, [float(r["ns_per_body_substep_buoyancy"]) / 1e3 for r in rs], "--x", label=f"buoyancy, {t} thread(s){tag}")
     budget = 1e6 / 240 / 1000  # µs of wall time per body-substep for 1,000 bodies in real time at 240 Hz

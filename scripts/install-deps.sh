@@ -31,6 +31,7 @@ if [ "${1:-}" = "--extra" ]; then
     clang                  # clang 14: libFuzzer targets (fuzz/)
     libclang-rt-14-dev     # libFuzzer + ASan/UBSan runtimes for clang
     llvm                   # llvm-symbolizer: readable sanitizer stack traces
+    libomp-dev             # LLVM's OpenMP runtime and its ThreadSanitizer tool (libarcher) for the TSan build
   )
 fi
 # `scripts/install-deps.sh --bench`: also what scripts/bench.sh needs for its plots (matplotlib). The default

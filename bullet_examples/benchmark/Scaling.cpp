@@ -27,7 +27,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Runs every body's btBuoyancyAction once per substep, across threads. The first action runs alone: it
+/// The benchmark's own driver (`bench` rows, kept for comparison with the library's threads): runs every body's
+/// btBuoyancyAction once per substep, across OpenMP threads, from one Bullet action. The first action runs alone: it
 /// advances the shared water clock (btBuoyancyWorld::beginSubstepIfNew); the others then only read it and
 /// touch their own body, so they can run concurrently. Below 9 bodies the loop stays on one thread (an idle
 /// OpenMP worker spin-waiting between substeps would only steal the main thread's core). Chunks of 16 bodies are
@@ -51,6 +52,34 @@ public:
     void debugDraw(btIDebugDraw*) override {}
 };
 
+/// Observers of the `world` driver (they drive nothing): the first action of the world notes the time, the last one
+/// adds the time since, so `seconds` is the time spent in the buoyancy actions (the library's parallel evaluation at
+/// the first of them, then each applying its impulses).
+struct BuoyancyClock {
+    Clock::time_point start;
+    double seconds = 0;
+};
+class ClockStart : public btActionInterface {
+public:
+    explicit ClockStart(BuoyancyClock& c) : m_clock(c) {}
+    void updateAction(btCollisionWorld*, btScalar) override { m_clock.start = Clock::now(); }
+    void debugDraw(btIDebugDraw*) override {}
+
+private:
+    BuoyancyClock& m_clock;
+};
+class ClockStop : public btActionInterface {
+public:
+    explicit ClockStop(BuoyancyClock& c) : m_clock(c) {}
+    void updateAction(btCollisionWorld*, btScalar) override {
+        m_clock.seconds += std::chrono::duration<double>(Clock::now() - m_clock.start).count();
+    }
+    void debugDraw(btIDebugDraw*) override {}
+
+private:
+    BuoyancyClock& m_clock;
+};
+
 }  // namespace
 
 std::vector<btGerstnerWave> p3Sea() {
@@ -64,6 +93,14 @@ std::vector<btGerstnerWave> p3Sea() {
 
 namespace {
 std::vector<btGerstnerWave> sea() { return p3Sea(); }
+
+/// The scaling sea without its third-derivative scale: the exact-mesh default then models the water over each triangle
+/// as the plane through its corners' heights (the model before the curved-water default), still with the wave patch.
+class PlaneGerstnerWaterSurface : public btGerstnerWaterSurface {
+public:
+    using btGerstnerWaterSurface::btGerstnerWaterSurface;
+    double heightThirdDerivativeScale(double) const override { return 0.0; }
+};
 
 }  // namespace
 
@@ -106,15 +143,20 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
     const double spacing = 4.0 * (hi - lo).maxCoeff();  // four body lengths
     const double density = 500.0;
     const double floating = floatingHeight(mesh, shape->getUnitSolid().volume, density / 1000.0);
-    const btGerstnerWaterSurface water(sea());
+    const btGerstnerWaterSurface curvedWater(sea());
+    const PlaneGerstnerWaterSurface planeWater(sea());
+    const btGerstnerWaterSurface& water = o.planeWater ? planeWater : curvedWater;
     const double dt = 1.0 / o.substepsPerSecond;
+    for (const std::string& driver : o.drivers) {
+    if (driver != "world" && driver != "bench") throw std::invalid_argument("scaling: unknown driver '" + driver + "'");
+    const bool viaWorld = driver == "world";
     for (int threads : o.threads) {
-        if (threads > 1 && !scalingHasOpenMP()) {
+        if (!viaWorld && threads > 1 && !scalingHasOpenMP()) {
             log << "  scaling: " << threads << " threads skipped (built without OpenMP)\n";
             continue;
         }
 #ifdef BUOYANCY_BENCH_OPENMP
-        omp_set_num_threads(threads);
+        if (!viaWorld) omp_set_num_threads(threads);
 #endif
         for (int n : o.bodies) {
             btDefaultCollisionConfiguration config;
@@ -123,10 +165,19 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
             btSequentialImpulseConstraintSolver solver;
             btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
             world.setGravity(btVector3(0, btScalar(-9.81), 0));
-            btBuoyancyWorld buoyancy(&water, 1000.0, 9.81);
+            // `world`: the user's code (README): the context of the world, its threads, one action per body in the
+            // world. `bench`: the context without the world, the actions run by the benchmark's OpenMP action.
+            std::unique_ptr<btBuoyancyWorld> context = viaWorld ? std::make_unique<btBuoyancyWorld>(&world, &water, 1000.0)
+                                                                : std::make_unique<btBuoyancyWorld>(&water, 1000.0, 9.81);
+            if (viaWorld) context->setThreads(threads);
+            btBuoyancyWorld& buoyancy = *context;
             std::vector<std::unique_ptr<btBuoyantBody>> bodies;
             std::vector<std::unique_ptr<btBuoyancyAction>> actions;
             ParallelBuoyancy batch;
+            BuoyancyClock clock;
+            ClockStart clockStart(clock);
+            ClockStop clockStop(clock);
+            if (viaWorld) world.addAction(&clockStart);
             btBuoyantBodySettings bs;
             bs.density = density;
             const int side = int(std::ceil(std::sqrt(double(n))));
@@ -141,49 +192,79 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
                 bodies.push_back(std::make_unique<btBuoyantBody>(shape, bs, t));
                 world.addRigidBody(bodies.back()->getRigidBody());
                 actions.push_back(std::make_unique<btBuoyancyAction>(*bodies.back(), &buoyancy, o.settings));
-                batch.actions.push_back(actions.back().get());
+                if (viaWorld)
+                    world.addAction(actions.back().get());
+                else
+                    batch.actions.push_back(actions.back().get());
             }
-            world.addAction(&batch);
+            if (viaWorld)
+                world.addAction(&clockStop);
+            else
+                world.addAction(&batch);
             const int perFrame = 4;  // 60 frames/s × 4 substeps
             // Untimed warm-up (warmupSeconds): the bodies settle from their starting pose into the waves, and the
             // temporal level of detail has the exact evaluations it extrapolates from before the clock starts.
             const long warmupFrames = std::max(1L, std::lround(o.warmupSeconds / (perFrame * dt)));
             for (long f = 0; f < warmupFrames; ++f) world.stepSimulation(btScalar(perFrame * dt), perFrame, btScalar(dt));
-            batch.seconds = 0;
             const double substeps = std::max(double(o.minSubsteps), std::min(o.simSeconds / dt, o.maxBodySubsteps / n));
             const long frames = std::max(1L, std::lround(substeps / perFrame));
-            long contacts = 0;
-            const auto t0 = Clock::now();
-            for (long f = 0; f < frames; ++f) {
-                world.stepSimulation(btScalar(perFrame * dt), perFrame, btScalar(dt));
-                for (int m = 0; m < dispatcher.getNumManifolds(); ++m)
-                    if (dispatcher.getManifoldByIndexInternal(m)->getNumContacts() > 0) ++contacts;
+            struct Window {
+                double wall, buoyancy;
+                long contacts;
+            };
+            std::vector<Window> windows;
+            for (int k = 0; k < std::max(1, o.windows); ++k) {
+                batch.seconds = 0;
+                clock.seconds = 0;
+                long contacts = 0;
+                const auto t0 = Clock::now();
+                for (long f = 0; f < frames; ++f) {
+                    world.stepSimulation(btScalar(perFrame * dt), perFrame, btScalar(dt));
+                    for (int m = 0; m < dispatcher.getNumManifolds(); ++m)
+                        if (dispatcher.getManifoldByIndexInternal(m)->getNumContacts() > 0) ++contacts;
+                }
+                const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+                windows.push_back({wall, viaWorld ? clock.seconds : batch.seconds, contacts});
             }
-            const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
-            world.removeAction(&batch);
+            if (viaWorld) {
+                world.removeAction(&clockStart);
+                world.removeAction(&clockStop);
+                for (auto& a : actions) world.removeAction(a.get());
+            } else {
+                world.removeAction(&batch);
+            }
             for (auto& b : bodies) world.removeRigidBody(b->getRigidBody());
             actions.clear();
+            std::vector<Window> sorted = windows;
+            std::sort(sorted.begin(), sorted.end(), [](const Window& a, const Window& b) { return a.wall < b.wall; });
+            const Window& median = sorted[sorted.size() / 2];
 
             ScalingRow r;
             r.model = model;
             r.triangles = mesh.triangleCount();
             r.method = method;
             r.variant = o.variant;
+            r.driver = driver;
             r.bodies = n;
-            r.threads = threads;
+            r.threads = viaWorld ? buoyancy.getThreads() : threads;
             r.substeps = frames * perFrame;
             r.simSeconds = double(r.substeps) * dt;
-            r.wallSeconds = wall;
-            r.buoyancySeconds = batch.seconds;
-            r.realtimeFactor = r.simSeconds / wall;
-            r.nsPerBodySubstepTotal = 1e9 * wall / (double(n) * double(r.substeps));
-            r.nsPerBodySubstepBuoyancy = 1e9 * batch.seconds / (double(n) * double(r.substeps));
-            r.contacts = contacts;
+            r.wallSeconds = median.wall;
+            r.buoyancySeconds = median.buoyancy;
+            r.realtimeFactor = r.simSeconds / median.wall;
+            r.windows = int(windows.size());
+            r.realtimeFactorMin = r.simSeconds / sorted.back().wall;
+            r.realtimeFactorMax = r.simSeconds / sorted.front().wall;
+            r.nsPerBodySubstepTotal = 1e9 * median.wall / (double(n) * double(r.substeps));
+            r.nsPerBodySubstepBuoyancy = 1e9 * median.buoyancy / (double(n) * double(r.substeps));
+            r.contacts = median.contacts;
             rows.push_back(r);
-            log << "  scaling " << model << (o.variant.empty() ? "" : " [" + o.variant + "]") << " x" << n << ", " << threads << " thread(s): " << r.nsPerBodySubstepTotal
+            log << "  scaling " << model << (o.variant.empty() ? "" : " [" + o.variant + "]") << " driver " << driver
+                << " x" << n << ", " << r.threads << " thread(s): " << r.nsPerBodySubstepTotal
                 << " ns/body-substep total, " << r.nsPerBodySubstepBuoyancy << " buoyancy; real-time factor "
-                << r.realtimeFactor << '\n';
+                << r.realtimeFactor << " (median of " << r.windows << ")\n";
         }
+    }
     }
     return rows;
 }
@@ -239,13 +320,14 @@ std::string scalingBreakdownMarkdown(const TriangleMesh& mesh, std::ostream& log
 void writeScalingCsv(const std::string& path, const std::vector<ScalingRow>& rows) {
     std::FILE* f = std::fopen(path.c_str(), "w");
     if (!f) throw std::runtime_error("cannot write " + path);
-    std::fprintf(f, "model,triangles,method,variant,bodies,threads,substeps,sim_seconds,wall_seconds,buoyancy_seconds,"
-                    "realtime_factor,ns_per_body_substep_total,ns_per_body_substep_buoyancy,ns_per_body_substep_bullet,"
-                    "contact_manifolds\n");
+    std::fprintf(f, "model,triangles,method,variant,driver,bodies,threads,substeps,sim_seconds,wall_seconds,buoyancy_seconds,"
+                    "realtime_factor,windows,realtime_factor_min,realtime_factor_max,ns_per_body_substep_total,"
+                    "ns_per_body_substep_buoyancy,ns_per_body_substep_bullet,contact_manifolds\n");
     for (const ScalingRow& r : rows)
-        std::fprintf(f, "%s,%zu,%s,%s,%d,%d,%ld,%.4f,%.4f,%.4f,%.4g,%.1f,%.1f,%.1f,%ld\n", r.model.c_str(), r.triangles,
-                     r.method.c_str(), r.variant.c_str(), r.bodies, r.threads, r.substeps, r.simSeconds, r.wallSeconds, r.buoyancySeconds,
-                     r.realtimeFactor, r.nsPerBodySubstepTotal, r.nsPerBodySubstepBuoyancy,
+        std::fprintf(f, "%s,%zu,%s,%s,%s,%d,%d,%ld,%.4f,%.4f,%.4f,%.4g,%d,%.4g,%.4g,%.1f,%.1f,%.1f,%ld\n", r.model.c_str(),
+                     r.triangles, r.method.c_str(), r.variant.c_str(), r.driver.c_str(), r.bodies, r.threads, r.substeps,
+                     r.simSeconds, r.wallSeconds, r.buoyancySeconds, r.realtimeFactor, r.windows, r.realtimeFactorMin,
+                     r.realtimeFactorMax, r.nsPerBodySubstepTotal, r.nsPerBodySubstepBuoyancy,
                      r.nsPerBodySubstepTotal - r.nsPerBodySubstepBuoyancy, r.contacts);
     if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + path);
 }

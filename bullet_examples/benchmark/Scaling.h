@@ -1,9 +1,11 @@
 #pragma once
 /// @file Scaling.h
 /// The scaling run (the 1,000-boat real-time figure): N bodies of one model in a 4-wave Gerstner sea at 240 substeps/s,
-/// colliding through their convex hulls, spread four body lengths apart; buoyancy of all bodies computed
-/// by one Bullet action that runs the per-body btBuoyancyActions across OpenMP threads (the library is not
-/// threaded; Debian's Bullet has no task scheduler, so Bullet's own step stays on one thread).
+/// colliding through their convex hulls, spread four body lengths apart. Two drivers: `world` — exactly as a user writes
+/// it: bodies and one btBuoyancyAction per body added to the Bullet world, btBuoyancyWorld::setThreads, stepSimulation
+/// (the library evaluates the bodies in parallel itself); `bench` — the earlier benchmark-private driver, one Bullet
+/// action running the per-body actions across OpenMP threads, kept for comparison. Debian's Bullet has no task
+/// scheduler, so Bullet's own step stays on one thread in both.
 
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/mesh/TriangleMesh.h>
@@ -18,7 +20,12 @@ namespace buoyancy::bench {
 /// What to run.
 struct ScalingOptions {
     std::vector<int> bodies{1, 10, 100, 1000}; ///< body counts
-    std::vector<int> threads{1, 2};            ///< OpenMP thread counts for the buoyancy actions
+    std::vector<int> threads{1, 2};            ///< thread counts (btBuoyancyWorld::setThreads; OpenMP for `bench`)
+    /// Drivers: "world" (the public API) and/or "bench" (the benchmark-private OpenMP action, for comparison).
+    std::vector<std::string> drivers{"world"};
+    /// Timed windows per row (each simSeconds long, one after the other after one warm-up): the row's real-time
+    /// factor is their median, its times those of the median window.
+    int windows = 1;
     double simSeconds = 1.0;                   ///< simulated time per run at most, s (after the warm-up)
     /// Simulated untimed first, s: the bodies settle into the waves (the heave of the benchmark's boat decays over
     /// ≈ 2–3 s; in the first seconds the temporal level of detail predicts less: 52–60 % of the substeps at 1–2 s,
@@ -31,6 +38,9 @@ struct ScalingOptions {
     int substepsPerSecond = 240;               ///< fixed substep rate
     btBuoyancySettings settings;               ///< buoyancy settings of every body (default: the library's)
     std::string variant;                       ///< label of `settings` in the CSV (empty: the defaults)
+    /// The water over each triangle as the plane through its corners' heights (the exact-mesh model on waves before the
+    /// curved-water default): the same sea, declaring no third-derivative scale. For comparison rows only.
+    bool planeWater = false;
 };
 
 /// One row of scaling.csv.
@@ -39,13 +49,17 @@ struct ScalingRow {
     std::size_t triangles = 0;    ///< triangles of the model
     std::string method;           ///< the resolved default method (and N)
     std::string variant;          ///< ScalingOptions::variant (empty: default settings)
+    std::string driver;           ///< "world" (public API) or "bench" (benchmark-private OpenMP action)
     int bodies = 0;               ///< body count
-    int threads = 0;              ///< OpenMP threads for buoyancy
+    int threads = 0;              ///< threads for buoyancy
     long substeps = 0;            ///< substeps timed
     double simSeconds = 0;        ///< simulated time, s
     double wallSeconds = 0;       ///< wall-clock time of stepSimulation, s
     double buoyancySeconds = 0;   ///< of which in the buoyancy actions, s
-    double realtimeFactor = 0;    ///< simSeconds / wallSeconds (≥ 1: real time)
+    double realtimeFactor = 0;    ///< simSeconds / wallSeconds (≥ 1: real time); the median over the windows
+    int windows = 1;              ///< timed windows the median is over
+    double realtimeFactorMin = 0; ///< the lowest of the windows
+    double realtimeFactorMax = 0; ///< the highest of the windows
     double nsPerBodySubstepTotal = 0;    ///< wall / (bodies × substeps), ns
     double nsPerBodySubstepBuoyancy = 0; ///< buoyancy wall / (bodies × substeps), ns
     long contacts = 0;            ///< contact manifolds with points, summed over substeps

@@ -253,7 +253,7 @@ std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::v
     md << "\n## 1,000 bodies in real time on 2 cores\n\n";
     const ScalingRow* p3 = nullptr;
     for (const auto& r : scaling)
-        if (r.bodies >= 1000 && r.threads == 2 && r.variant.empty()) p3 = &r;
+        if (r.bodies == 1000 && r.threads == 2 && r.variant.empty() && r.driver == "world") p3 = &r;
     if (!p3) {
         md << "Not measured in this run (needs 1,000 bodies and 2 threads; `buoyancy bench` without --quick).\n";
     } else {
@@ -270,10 +270,40 @@ std::string summaryMarkdown(const std::vector<SpeedErrorRow>& rows, const std::v
         md << "- In real time on 2 cores at these settings: about " << fmt("%.0f", std::floor(p3->bodies * p3->realtimeFactor))
            << " bodies of this model (bodies × real-time factor).\n";
         for (const auto& one : scaling)
-            if (one.bodies == p3->bodies && one.threads == 1 && one.variant.empty())
+            if (one.bodies == p3->bodies && one.threads == 1 && one.variant.empty() && one.driver == "world")
                 md << "- 2 threads against 1 at " << one.bodies << " bodies: buoyancy "
                    << fmt("%.2f", one.nsPerBodySubstepBuoyancy / p3->nsPerBodySubstepBuoyancy) << "× faster, whole step "
                    << fmt("%.2f", one.nsPerBodySubstepTotal / p3->nsPerBodySubstepTotal) << "× (Bullet's own step stays on one thread).\n";
+    }
+    // Through the public API (driver `world`): the largest fleet in real time (median of the timed windows), the cost
+    // per body-substep against the body count, where the time goes, and the benchmark's own driver beside it.
+    const ScalingRow* best = nullptr;
+    for (const auto& r : scaling)
+        if (r.driver == "world" && r.threads == 2 && r.variant.empty() && r.bodies >= 100 && r.realtimeFactor >= 1 &&
+            (!best || r.bodies > best->bodies))
+            best = &r;
+    if (best)
+        md << "- Through the public API (one btBuoyancyAction per body in the Bullet world, stepSimulation, 2 threads): "
+           << best->bodies << " boats in real time (median real-time factor " << fmt("%.3f", best->realtimeFactor)
+           << " over " << best->windows << " timed seconds, lowest " << fmt("%.3f", best->realtimeFactorMin) << ").\n";
+    for (int threads : {1, 2}) {
+        std::string line;
+        for (const auto& r : scaling)
+            if (r.driver == "world" && r.threads == threads && r.variant.empty() && r.bodies >= 100)
+                line += (line.empty() ? "" : ", ") + std::to_string(r.bodies) + ": " + fmt("%.0f", r.nsPerBodySubstepTotal) +
+                        " (buoyancy " + fmt("%.0f", r.nsPerBodySubstepBuoyancy) + ", Bullet " +
+                        fmt("%.0f", r.nsPerBodySubstepTotal - r.nsPerBodySubstepBuoyancy) + ")";
+        if (!line.empty())
+            md << "- ns per body-substep, " << threads << " thread(s), bodies: " << line << ".\n";
+    }
+    for (const auto& b : scaling) {
+        if (b.driver != "bench" || !b.variant.empty()) continue;
+        for (const auto& w : scaling)
+            if (w.driver == "world" && w.variant.empty() && w.bodies == b.bodies && w.threads == b.threads)
+                md << "- " << b.bodies << " boats, " << b.threads << " thread(s): the library's threads "
+                   << fmt("%.0f", w.nsPerBodySubstepTotal) << " ns per body-substep (real-time factor "
+                   << fmt("%.3f", w.realtimeFactor) << "), the benchmark's own OpenMP driver "
+                   << fmt("%.0f", b.nsPerBodySubstepTotal) << " (" << fmt("%.3f", b.realtimeFactor) << ").\n";
     }
     // The 1,000-body run with a longer temporal level of detail (hydrostaticsInterval K; its force error: temporal_lod.csv below).
     for (const auto& r : scaling)

@@ -169,6 +169,9 @@ TEST_CASE("bench --quick writes the speed-against-error table, Fig. 9 and the sc
             CHECK(num(t[i], cn) > 0);
         }
         CHECK(bodies == std::set<int>{1, 10, 100});
+        // Driven through the public API: the `driver` column says `world` for every quick row.
+        const int cd = column(t, "driver");
+        for (std::size_t i = 1; i < t.size(); ++i) CHECK(t[i][std::size_t(cd)] == "world");
     }
     {  // temporal_lod.csv: interval 1 never predicts, the default resolves to 8 at 240 substeps/s and predicts at most
        // seven substeps of eight, every error finite and small

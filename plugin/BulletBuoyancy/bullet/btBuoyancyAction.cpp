@@ -258,11 +258,49 @@ void btBuoyancyAction::dragEvaluationVelocity(const buoyancy::HydrostaticsResult
 
 void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) {
     const double dt = double(deltaTimeStep);
+    // A zero, negative or non-finite step applies nothing and leaves the water's clock alone.
+    if (!(dt > 0) || !std::isfinite(dt)) {
+        m_result.applied = false;
+        m_result.status = btBuoyancyStatus::Ok;
+        return;
+    }
+    // At a new substep the world evaluates every body of its batch (btBuoyancyThreads.cpp), this one included.
+    m_world->beginSubstepIfNew(m_lastSubstep, dt, collisionWorld);
+    if (m_evaluatedSubstep != m_world->getSubstep()) evaluate(collisionWorld, dt);  // not in a batch: now
+    applyPending();
+}
+
+void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* collisionWorld, double dt) {
+    try {
+        action.evaluate(collisionWorld, dt);
+    } catch (...) {
+        // Never let an exception out of a worker thread (evaluate catches the computations' own): nothing applied.
+        action.m_evaluatedSubstep = action.m_world->getSubstep();
+        action.m_pendingActivate = action.m_pendingSleep = action.m_pendingImpulse = false;
+        action.m_result.applied = false;
+        ++action.m_rejected;
+        action.m_history.clear();
+    }
+}
+
+void btBuoyancyAction::applyPending() {
+    if (m_pendingActivate) m_body->activate();
+    if (m_pendingSleep) m_body->setSleepingThresholds(m_pendingLinearSleep, m_pendingAngularSleep);
+    if (m_pendingImpulse) {
+        m_body->applyCentralImpulse(m_pendingJ);
+        m_body->applyTorqueImpulse(m_pendingL);
+        m_result.applied = true;
+        m_needsPrime = false;
+        BT_BUOYANCY_CHECK_BODY(*m_body);
+    }
+    m_pendingActivate = m_pendingSleep = m_pendingImpulse = false;
+}
+
+void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double dt) {
+    m_evaluatedSubstep = m_world->getSubstep();
+    m_pendingActivate = m_pendingSleep = m_pendingImpulse = false;
     m_result.applied = false;
     m_result.status = btBuoyancyStatus::Ok;
-    // A zero, negative or non-finite step applies nothing and leaves the water's clock alone.
-    if (!(dt > 0) || !std::isfinite(dt)) return;
-    m_world->beginSubstepIfNew(m_lastSubstep, dt, collisionWorld);
 #ifndef NDEBUG
     // Misuse check: an action whose body is in another world (a removed body has no broadphase handle and
     // is skipped below).
@@ -286,7 +324,9 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
         m_result.time = m_world->getTime();
         m_history.clear();
         m_hasLastCom = false;
-        m_body->setSleepingThresholds(btScalar(m_baseLinearSleep), btScalar(m_baseAngularSleep));
+        m_pendingSleep = true;
+        m_pendingLinearSleep = btScalar(m_baseLinearSleep);
+        m_pendingAngularSleep = btScalar(m_baseAngularSleep);
         return;
     }
     const bool waves = water->isTimeVarying();
@@ -322,12 +362,14 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
         m_needsPrime = false;  // dry: the missed kick was zero
         m_history.clear();
         m_hasLastCom = false;  // out of the water Bullet's own sleeping test is right again
-        m_body->setSleepingThresholds(btScalar(m_baseLinearSleep), btScalar(m_baseAngularSleep));
+        m_pendingSleep = true;
+        m_pendingLinearSleep = btScalar(m_baseLinearSleep);
+        m_pendingAngularSleep = btScalar(m_baseAngularSleep);
         m_result = btBuoyancyResult();
         m_result.time = time;
         return;
     }
-    if (waves) m_body->activate();
+    if (waves) m_pendingActivate = true;  // written at applyPending
 
     // Temporal level of detail (settings.hydrostaticsInterval, btHydrostaticsHistory): exact at this body's
     // evaluation substeps, predicted in between while the checks allow it.
@@ -515,12 +557,11 @@ void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     m_lastCom = com;
     m_hasLastCom = true;
     const btScalar open = atRest ? btScalar(1e6) : btScalar(0);
-    m_body->setSleepingThresholds(open, open);
-    m_body->applyCentralImpulse(J);
-    m_body->applyTorqueImpulse(L);
-    m_result.applied = true;
-    m_needsPrime = false;
-    BT_BUOYANCY_CHECK_BODY(*m_body);
+    m_pendingSleep = true;
+    m_pendingLinearSleep = m_pendingAngularSleep = open;
+    m_pendingImpulse = true;
+    m_pendingJ = J;
+    m_pendingL = L;
 }
 
 double btBuoyancyAction::restEnergy(const buoyancy::HydrostaticsResult& h, double mass,

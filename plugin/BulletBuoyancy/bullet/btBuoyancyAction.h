@@ -28,6 +28,7 @@
 
 class btRigidBody;
 class btBuoyancyWorld;
+class btCollisionWorld;
 class btBuoyantBody;
 class btBuoyancyDeformable;
 
@@ -52,6 +53,9 @@ struct btBuoyancyResult {
     btBuoyancyStatus status = btBuoyancyStatus::Ok;
 };
 
+/// Internal (btBuoyancyWorld's batch): evaluate `action`'s body for the current substep of its world (dt, s).
+void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* collisionWorld, double dt);
+
 /// Buoyancy of one rigid body in the water of a btBuoyancyWorld.
 class btBuoyancyAction : public btActionInterface {
 public:
@@ -75,7 +79,9 @@ public:
     btBuoyancyAction(const btBuoyancyAction&) = delete;
     btBuoyancyAction& operator=(const btBuoyancyAction&) = delete;
 
-    /// Called by Bullet once per substep after integrateTransforms; applies impulses for `deltaTimeStep`.
+    /// Called by Bullet once per substep after integrateTransforms; applies impulses for `deltaTimeStep`. When its
+    /// btBuoyancyWorld batches (the default, btBuoyancyWorld::setBatching), the first action of the world called in a
+    /// substep evaluates every body of the world across threads, and each action applies its own result here.
     void updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) override;
     /// Draws the buoyancy force at the centre of buoyancy and the drag force at the COM (1 m per m·g).
     void debugDraw(btIDebugDraw* debugDrawer) override;
@@ -119,6 +125,13 @@ public:
     ///@}
 
 private:
+    friend void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* collisionWorld, double dt);
+    /// Everything of a substep that reads the body and writes only this action's state: the water, hydrostatics,
+    /// drag, the temporal level of detail and the decisions; what it would write into the body is kept for
+    /// applyPending. Safe to run for different bodies at once. dt: substep, s (> 0, finite).
+    void evaluate(const btCollisionWorld* collisionWorld, double dt);
+    /// Write what evaluate decided into the body (activation, sleeping thresholds, impulses), at the action's turn.
+    void applyPending();
     void computeDrag(const Eigen::Isometry3d& pose, const buoyancy::WaterPatch* patch, const Eigen::Vector3d& com,
                      const Eigen::Vector3d& v, const Eigen::Vector3d& w, double density, double time,
                      Eigen::Vector3d& force, Eigen::Vector3d& torque, Eigen::Vector3d& meanWaterVelocity,
@@ -158,6 +171,15 @@ private:
     btTransform m_meshInCom;
     btBuoyancyResult m_result;
     std::uint64_t m_lastSubstep = 0;
+    /// @name What evaluate decided for the body, written by applyPending (at the action's turn in Bullet's order)
+    ///@{
+    std::uint64_t m_evaluatedSubstep = 0; ///< the substep evaluate last ran for (0: never)
+    bool m_pendingActivate = false;       ///< wake the body
+    bool m_pendingSleep = false;          ///< set its sleeping thresholds to m_pendingLinearSleep, m_pendingAngularSleep
+    btScalar m_pendingLinearSleep = 0, m_pendingAngularSleep = 0; ///< m/s, rad/s
+    bool m_pendingImpulse = false;        ///< apply m_pendingJ (N·s) and m_pendingL (N·m·s)
+    btVector3 m_pendingJ = btVector3(0, 0, 0), m_pendingL = btVector3(0, 0, 0);
+    ///@}
     std::uint64_t m_rejected = 0;
     std::shared_ptr<btBuoyancyDeformable> m_deformable;  ///< re-baked samples of a deformable body
     /// True until the first hydrostatic kick after creation or sleep: Bullet has already applied gravity for

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -144,8 +145,14 @@ void btBuoyancyWorld::beginSubstepIfNew(std::uint64_t& lastSeen, double dt, cons
             const btVector3 g = world->getGravity();
             followGravity(double(g.x()), double(g.y()), double(g.z()));
         }
-        // A batching backend computes every registered action's result from here on (at the first request).
-        if (m_device) m_device->beginSubstep(dt);
+        // A batching backend computes every registered action's result from here on (at the first request); else
+        // the bodies of the batch are evaluated now, across the threads (btBuoyancyThreads.cpp).
+        if (m_device)
+            m_device->beginSubstep(dt);
+        else if (m_batching)
+            evaluateBatch(from ? from : m_dynamicsWorld, dt);
+        else
+            m_lastBatchSize = 0;
     }
     lastSeen = m_substep;
 }
@@ -155,10 +162,22 @@ void btBuoyancyWorld::setDeviceBackend(std::unique_ptr<btBuoyancyDeviceBackend> 
 }
 
 std::uint64_t btBuoyancyWorld::registerAction(btBuoyancyAction* action) {
+    if (m_inBatch.load())
+        throw std::logic_error("btBuoyancyAction: created while its btBuoyancyWorld evaluates a substep's bodies in "
+                               "parallel; create and destroy actions between steps");
+    m_batchDirty = true;
     m_actions.push_back(action);
     return m_registrations++;
 }
 
 void btBuoyancyWorld::unregisterAction(btBuoyancyAction* action) {
+    if (m_inBatch.load()) {
+        // Called from an action's destructor (noexcept): refused with a message, never a data race.
+        std::fprintf(stderr, "btBuoyancyAction: destroyed while its btBuoyancyWorld evaluates a substep's bodies in "
+                             "parallel; create and destroy actions between steps\n");
+        std::abort();
+    }
+    m_batchDirty = true;
+    m_batch.erase(std::remove(m_batch.begin(), m_batch.end(), action), m_batch.end());
     m_actions.erase(std::remove(m_actions.begin(), m_actions.end(), action), m_actions.end());
 }

@@ -5,6 +5,10 @@
 /// so a batching backend (threads, OpenCL) can compute every body when the first action of a substep is called
 /// and let the others read their result.
 ///
+/// Threads (docs/integration.md, design.md): at the first btBuoyancyAction of the world called in a substep, every
+/// body whose action is in the Bullet world is evaluated once, in parallel (setThreads); each action then applies
+/// its own impulses at its own turn in Bullet's action order. Results are bit-identical for any thread count.
+///
 /// Gravity is the world's: the context reads it from the btDynamicsWorld every substep, so a change at run time is
 /// followed. The pressure gradient belongs to the water, so buoyancy uses the world's gravity; a body's own gravity
 /// (btRigidBody::setGravity) is its weight only (design.md 3). "Up" is −ĝ of the world: the water surface is a height
@@ -14,6 +18,7 @@
 
 #include <BulletBuoyancy/bullet/btWaterFrame.h>
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -22,6 +27,7 @@
 class btWaterSurface;
 class btBuoyancyAction;
 class btBuoyancyDeviceBackend;
+class btActionInterface;
 class btCollisionWorld;
 class btDynamicsWorld;
 
@@ -143,6 +149,32 @@ public:
     btBuoyancyDeviceBackend* getDeviceBackend() const { return m_device.get(); }
     ///@}
 
+    ///@name Threads: every body of the world evaluated once per substep, in parallel
+    /// The number of threads the bodies are evaluated on, ≥ 1; 0 (the default) = the hardware's (the cores the process
+    /// may use). Results are bit-identical for every value: one thread runs the same batched schedule in order. When
+    /// the Bullet in use has a task scheduler with more than one thread (btGetTaskScheduler()), its parallelFor runs
+    /// the batch on its pool and its thread count applies instead (one pool for the library and Bullet).
+    /// Without OpenMP at build time (BULLET_BUOYANCY_THREADS=OFF) the batch runs on the calling thread.
+    /// @throws std::invalid_argument for n < 0
+    void setThreads(int n);
+    /// The number of threads the next batch runs on, ≥ 1 (setThreads's 0 resolved to the hardware's; 1 when built
+    /// without OpenMP; the scheduler's when Bullet's task scheduler runs the batch).
+    int getThreads() const;
+    /// Batching on (default): at the first btBuoyancyAction of the world called in a substep, every body whose
+    /// action is in the Bullet world is evaluated (water, hydrostatics, drag, temporal level of detail, decisions),
+    /// and each action applies its impulses at its own turn. Off: each action evaluates and applies at its own turn
+    /// on the calling thread, one after the other (the order of Bullet's action array). The two give bit-identical
+    /// results unless another action writes a buoyant body after the world's first buoyancy action and before that
+    /// body's own action in the same substep (then the batch saw the body before that write): add such actions
+    /// (vehicles, thrusters, user mass changes) before the buoyancy actions, or after each body's own buoyancy action,
+    /// or switch batching off. Ignored (per-action) while a device backend is installed (setCompute).
+    void setBatching(bool on) { m_batching = on; }
+    /// Whether batching is on (setBatching).
+    bool getBatching() const { return m_batching; }
+    /// Bodies evaluated in the last batch (0 when the last substep ran per action).
+    int getLastBatchSize() const { return int(m_lastBatchSize); }
+    ///@}
+
     /// Internal: actions register and unregister themselves. Returns how many actions registered before this one
     /// (its turn among the bodies for the temporal level of detail; deterministic for a given scene).
     std::uint64_t registerAction(btBuoyancyAction* action);
@@ -151,6 +183,10 @@ public:
 private:
     /// Read gravity (m/s², world frame) into m_gravity and m_gravityStatus.
     void followGravity(double gx, double gy, double gz);
+    /// Evaluate every registered action that is in `from`'s action array (the batch), across the threads.
+    void evaluateBatch(const btCollisionWorld* from, double dt);
+    /// Rebuild m_batch when the Bullet world's action array or the registered actions changed since the last batch.
+    void refreshBatch(const btActionInterface* const* worldActions, int count);
 
     btDynamicsWorld* m_dynamicsWorld = nullptr;
     const btWaterSurface* m_water;
@@ -166,4 +202,15 @@ private:
     std::vector<btBuoyancyAction*> m_actions;
     std::uint64_t m_registrations = 0;  ///< actions registered so far (never decreases)
     std::unique_ptr<btBuoyancyDeviceBackend> m_device;  ///< batching backend, nullptr = CPU
+    /// @name Threads
+    ///@{
+    int m_threads = 0;                ///< setThreads (0: the hardware's)
+    bool m_batching = true;           ///< setBatching
+    /// True while a batch runs: creating or destroying an action then is refused with a message.
+    std::atomic<bool> m_inBatch{false};
+    bool m_batchDirty = true;         ///< the registered actions changed since m_batch was built
+    std::vector<const btActionInterface*> m_seenWorldActions; ///< the Bullet world's action array m_batch was built from
+    std::vector<btBuoyancyAction*> m_batch; ///< registered actions in the Bullet world, in its order
+    std::size_t m_lastBatchSize = 0;  ///< bodies evaluated in the last batch
+    ///@}
 };

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <random>
+#include <shared_mutex>
 #include <stdexcept>
 #include <string>
 
@@ -258,41 +260,60 @@ void btFftOceanSurface::restPosition(double x, double z, double& x0, double& z0)
     }
 }
 
-void btFftOceanSurface::heights(const double* x, const double* z, std::size_t n, double t, double* outHeight) const {
-    std::lock_guard<std::mutex> lock(m_mutex);
-    ensureHeights(t);
-    for (std::size_t i = 0; i < n; ++i) {
-        double x0, z0;
-        restPosition(x[i], z[i], x0, z0);
-        outHeight[i] = m_s.height + sampleField(m_eta, x0, z0);
+template <class Read>
+void btFftOceanSurface::withFields(double t, bool velocity, Read&& read) const {
+    {
+        std::shared_lock<std::shared_mutex> lock(m_mutex);
+        if (t == m_tHeights && (!velocity || t == m_tVelocity)) {
+            read();
+            return;
+        }
     }
+    // Not yet computed for t: compute and read under the exclusive lock (no retry, so callers at different times
+    // cannot starve each other).
+    std::unique_lock<std::shared_mutex> lock(m_mutex);
+    if (velocity)
+        ensureVelocity(t);
+    else
+        ensureHeights(t);
+    read();
+}
+
+void btFftOceanSurface::heights(const double* x, const double* z, std::size_t n, double t, double* outHeight) const {
+    withFields(t, false, [&] {
+        for (std::size_t i = 0; i < n; ++i) {
+            double x0, z0;
+            restPosition(x[i], z[i], x0, z0);
+            outHeight[i] = m_s.height + sampleField(m_eta, x0, z0);
+        }
+    });
 }
 
 void btFftOceanSurface::velocities(const double* x, const double* y, const double* z, std::size_t n, double t,
                                    double* outVx, double* outVy, double* outVz) const {
-    std::lock_guard<std::mutex> lock(m_mutex);
-    ensureVelocity(t);
-    for (std::size_t i = 0; i < n; ++i) {
-        double x0, z0;
-        restPosition(x[i], z[i], x0, z0);
-        const double decay = std::exp(std::min(0.0, m_kPeak * (y[i] - m_s.height)));
-        outVx[i] = decay * sampleField(m_velX, x0, z0);
-        outVy[i] = decay * sampleField(m_velY, x0, z0);
-        outVz[i] = decay * sampleField(m_velZ, x0, z0);
-    }
+    withFields(t, true, [&] {
+        for (std::size_t i = 0; i < n; ++i) {
+            double x0, z0;
+            restPosition(x[i], z[i], x0, z0);
+            const double decay = std::exp(std::min(0.0, m_kPeak * (y[i] - m_s.height)));
+            outVx[i] = decay * sampleField(m_velX, x0, z0);
+            outVy[i] = decay * sampleField(m_velY, x0, z0);
+            outVz[i] = decay * sampleField(m_velZ, x0, z0);
+        }
+    });
 }
 
 void btFftOceanSurface::heightBounds(double, double, double, double, double t, double& outMin, double& outMax) const {
-    std::lock_guard<std::mutex> lock(m_mutex);
-    ensureHeights(t);
-    outMin = m_s.height + m_etaMin;
-    outMax = m_s.height + m_etaMax;
+    withFields(t, false, [&] {
+        outMin = m_s.height + m_etaMin;
+        outMax = m_s.height + m_etaMax;
+    });
 }
 
 std::vector<double> btFftOceanSurface::elevationField(double t) const {
-    std::lock_guard<std::mutex> lock(m_mutex);
-    ensureHeights(t);
-    return m_eta;
+    std::vector<double> eta;
+    withFields(t, false, [&] { eta = m_eta; });
+    return eta;
 }
 
 bool btFftOceanSurface::bilinearLattice(double, btWaterLattice& out) const {

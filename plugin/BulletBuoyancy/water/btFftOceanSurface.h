@@ -23,7 +23,7 @@
 
 #include <complex>
 #include <cstdint>
-#include <mutex>
+#include <shared_mutex>
 #include <vector>
 
 /// Parameters of btFftOceanSurface.
@@ -79,8 +79,13 @@ public:
 
 private:
     using Complex = std::complex<double>;
-    void ensureHeights(double t) const;   // requires m_mutex
-    void ensureVelocity(double t) const;  // requires m_mutex
+    void ensureHeights(double t) const;   // requires m_mutex held exclusively
+    void ensureVelocity(double t) const;  // requires m_mutex held exclusively
+    /// Run `read` with the fields of time t (and the velocity fields when `velocity`) in place: under a shared lock
+    /// when they already are (concurrent queries at one time, e.g. a world's bodies in one substep, read at once),
+    /// else under the exclusive lock after computing them.
+    template <class Read>
+    void withFields(double t, bool velocity, Read&& read) const;
     void inverseFft2(std::vector<Complex>& data) const;
     double sampleField(const std::vector<double>& f, double x, double z) const;
     void restPosition(double x, double z, double& x0, double& z0) const;  // requires fields at t
@@ -90,7 +95,7 @@ private:
     double m_dk, m_dx, m_windX, m_windZ, m_kPeak;
     std::vector<Complex> m_h0;       // N×N
     std::vector<double> m_omega;     // N×N
-    mutable std::mutex m_mutex;
+    mutable std::shared_mutex m_mutex;  ///< exclusive: computing the fields; shared: reading them
     mutable double m_tHeights, m_tVelocity;
     mutable std::vector<double> m_eta, m_dispX, m_dispZ, m_velX, m_velY, m_velZ;
     mutable double m_etaMin = 0, m_etaMax = 0;

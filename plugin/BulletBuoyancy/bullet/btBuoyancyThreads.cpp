@@ -1,0 +1,165 @@
+/// @file btBuoyancyThreads.cpp
+/// The parallel evaluation of a btBuoyancyWorld's bodies (declared in bullet/btBuoyancyWorld.h): which actions form
+/// the batch of a substep, and the threads that evaluate it (OpenMP, or Bullet's task scheduler when it has one).
+
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+
+#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
+#include <LinearMath/btThreads.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#ifdef BULLET_BUOYANCY_HAS_OPENMP
+#include <omp.h>
+#endif
+#if defined(__SSE__) || defined(_M_X64)
+#include <xmmintrin.h>
+#define BT_BUOYANCY_HAS_MXCSR 1
+#endif
+
+namespace {
+
+/// Bullet keeps a world's actions in a protected array without an accessor: read it through a member pointer formed
+/// in a derived class (never instantiated).
+struct WorldActions : btDiscreteDynamicsWorld {
+    static const btAlignedObjectArray<btActionInterface*>& of(const btDiscreteDynamicsWorld& world) {
+        return world.*(&WorldActions::m_actions);
+    }
+};
+
+/// The caller's floating-point control state (SSE: flush-to-zero, denormals-are-zero, rounding), carried into every
+/// worker for the batch and restored after it, so a body's result does not depend on the thread that evaluates it.
+class FpState {
+public:
+    static unsigned current() {
+#ifdef BT_BUOYANCY_HAS_MXCSR
+        return _mm_getcsr();
+#else
+        return 0;
+#endif
+    }
+    explicit FpState(unsigned wanted) : m_saved(current()) {
+#ifdef BT_BUOYANCY_HAS_MXCSR
+        if (m_saved != wanted) _mm_setcsr(wanted);
+#else
+        (void)wanted;
+#endif
+    }
+    ~FpState() {
+#ifdef BT_BUOYANCY_HAS_MXCSR
+        if (current() != m_saved) _mm_setcsr(m_saved);
+#endif
+    }
+    FpState(const FpState&) = delete;
+    FpState& operator=(const FpState&) = delete;
+
+private:
+    unsigned m_saved;
+};
+
+/// The batch as a body for Bullet's task scheduler.
+struct BatchBody : btIParallelForBody {
+    btBuoyancyAction* const* actions;
+    const btCollisionWorld* world;
+    double dt;
+    unsigned csr;
+    void forLoop(int begin, int end) const override {
+        FpState fp(csr);
+        for (int i = begin; i < end; ++i) btBuoyancyWorldEvaluate(*actions[i], world, dt);
+    }
+};
+
+/// Bullet's task scheduler, when the Bullet in use has one with more than one thread.
+btITaskScheduler* bulletScheduler() {
+    btITaskScheduler* scheduler = btGetTaskScheduler();
+    return scheduler && scheduler->getNumThreads() > 1 ? scheduler : nullptr;
+}
+
+}  // namespace
+
+void btBuoyancyWorld::setThreads(int n) {
+    if (n < 0)
+        throw std::invalid_argument("threads: must be >= 1, or 0 for the hardware's (got " + std::to_string(n) + ")");
+    m_threads = n;
+}
+
+int btBuoyancyWorld::getThreads() const {
+    if (btITaskScheduler* scheduler = bulletScheduler()) return scheduler->getNumThreads();
+#ifdef BULLET_BUOYANCY_HAS_OPENMP
+    return m_threads > 0 ? m_threads : std::max(1, omp_get_num_procs());
+#else
+    return 1;
+#endif
+}
+
+void btBuoyancyWorld::refreshBatch(const btActionInterface* const* worldActions, int count) {
+    const std::size_t n = std::size_t(std::max(count, 0));
+    if (!m_batchDirty && m_seenWorldActions.size() == n &&
+        std::equal(m_seenWorldActions.begin(), m_seenWorldActions.end(), worldActions))
+        return;  // the usual case: nothing added or removed since the last substep (no allocation)
+    m_seenWorldActions.assign(worldActions, worldActions + n);
+    std::vector<const btActionInterface*> mine(m_actions.begin(), m_actions.end());
+    std::sort(mine.begin(), mine.end());
+    m_batch.clear();
+    std::vector<const btActionInterface*> taken;  // an action added twice to the world is evaluated once
+    for (const btActionInterface* a : m_seenWorldActions) {
+        if (!std::binary_search(mine.begin(), mine.end(), a)) continue;
+        if (std::find(taken.begin(), taken.end(), a) != taken.end()) continue;
+        taken.push_back(a);
+        m_batch.push_back(static_cast<btBuoyancyAction*>(const_cast<btActionInterface*>(a)));
+    }
+    m_batchDirty = false;
+}
+
+void btBuoyancyWorld::evaluateBatch(const btCollisionWorld* from, double dt) {
+    // The batch: this context's actions in the array of the Bullet world being stepped, in its order. Without a
+    // discrete dynamics world at hand (actions stepped by hand), each action evaluates at its own turn.
+    const auto* world = dynamic_cast<const btDiscreteDynamicsWorld*>(from);
+    if (!world) {
+        m_lastBatchSize = 0;
+        return;
+    }
+    const btAlignedObjectArray<btActionInterface*>& actions = WorldActions::of(*world);
+    refreshBatch(actions.size() > 0 ? &actions[0] : nullptr, actions.size());
+    const int n = int(m_batch.size());
+    m_lastBatchSize = m_batch.size();
+    if (n == 0) return;
+    struct InBatch {
+        std::atomic<bool>& flag;
+        explicit InBatch(std::atomic<bool>& f) : flag(f) { flag.store(true); }
+        ~InBatch() { flag.store(false); }
+    } inBatch(m_inBatch);
+    const unsigned csr = FpState::current();
+    btBuoyancyAction* const* batch = m_batch.data();
+    if (btITaskScheduler* scheduler = bulletScheduler()) {
+        BatchBody body;
+        body.actions = batch;
+        body.world = from;
+        body.dt = dt;
+        body.csr = csr;
+        scheduler->parallelFor(0, n, std::max(1, std::min(16, n / (8 * scheduler->getNumThreads()))), body);
+        return;
+    }
+#ifdef BULLET_BUOYANCY_HAS_OPENMP
+    // Below 4 bodies one thread: an OpenMP worker spin-waiting between substeps would only take the core Bullet's
+    // own step runs on. Chunks of up to 16 bodies are handed out as threads free up: a body costs tens of µs at an
+    // exact evaluation and a few µs when the temporal level of detail predicts it, so static halves leave one thread
+    // waiting. The results do not depend on which thread takes which body (everything a body evaluation writes is
+    // the body's own: its action's state, caches and scratch).
+    const int threads = std::min(getThreads(), n);
+    if (threads > 1 && n >= 4) {
+        const int chunk = std::max(1, std::min(16, n / (8 * threads)));
+#pragma omp parallel num_threads(threads)
+        {
+            FpState fp(csr);
+#pragma omp for schedule(dynamic, chunk)
+            for (int i = 0; i < n; ++i) btBuoyancyWorldEvaluate(*batch[i], from, dt);
+        }
+        return;
+    }
+#endif
+    for (int i = 0; i < n; ++i) btBuoyancyWorldEvaluate(*batch[i], from, dt);
+}
