@@ -324,7 +324,7 @@ bool btFftOceanSurface::bilinearLattice(double, btWaterLattice& out) const {
 }
 
 double btFftOceanSurface::heightThirdDerivativeScale(double t) const {
-    std::lock_guard<std::mutex> lock(m_mutex);
-    ensureHeights(t);
-    return std::isfinite(m_thirdDerivativeScale) ? m_thirdDerivativeScale : 0.0;
+    double scale = 0;
+    withFields(t, false, [&] { scale = m_thirdDerivativeScale; });
+    return std::isfinite(scale) ? scale : 0.0;
 }
