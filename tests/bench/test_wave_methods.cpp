@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <ctime>
 
 namespace {
@@ -251,5 +252,24 @@ TEST_CASE("waves: fine meshes, plane against curved water (manual)", "[.timing]"
         }
         std::printf("  %-9s leaf %.3f m  thickness %.3f m  estimate %.4f  plane %.4f %% (%.0f us)  curved %.4f %% (%.0f us)\n",
                     m.first, tree.medianLeafRadius, thickness, estimate, worstPlane, usPlane, worstCurved, usCurved);
+    }
+}
+
+// A few scaling rows through the public API (the full set is `buoyancy bench --parts scaling`, ~45 min): boat-x4 at
+// the default settings and with the plane water model, 1,000 boats, 1 and 2 threads.
+TEST_CASE("scaling: 1,000 boats through the public API (manual)", "[.timing]") {
+    const buoyancy::TriangleMesh boat4 = buoyancy::bench::subdivideMesh(buoyancy::bench::loadBoatHull());
+    for (bool plane : {false, true}) {
+        buoyancy::bench::ScalingOptions o;
+        o.bodies = {1000};
+        o.threads = {1, 2};
+        o.windows = 3;
+        o.planeWater = plane;
+        o.variant = plane ? "plane-water" : "";
+        std::ostringstream log;
+        for (const auto& r : buoyancy::bench::runScaling(boat4, "boat-x4", o, log))
+            std::printf("  %-12s bodies %d threads %d  realtime %.2f (%.2f–%.2f)  %.1f us per body-substep (buoyancy %.1f)\n",
+                        plane ? "plane-water" : "default", r.bodies, r.threads, r.realtimeFactor, r.realtimeFactorMin,
+                        r.realtimeFactorMax, 1e-3 * r.nsPerBodySubstepTotal, 1e-3 * r.nsPerBodySubstepBuoyancy);
     }
 }
