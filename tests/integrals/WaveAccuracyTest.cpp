@@ -66,9 +66,9 @@ HydrostaticsResult defaultEvaluation(const MeshMomentTree& tree, const TriangleM
                                      double radius, WaterPatch& patch, btWaterQueryCache& cache) {
     const btBuoyancySettings settings;
     const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(settings, radius, water.shortestWavelength()));
-    // The hydrostatics use the patch only when it has fewer nodes than their own heights (one per vertex and per
-    // edge); drag probes do not count (the action decides for its drag apart).
-    const std::size_t points = mesh.vertices.size() + tree.edges.edges.size();
+    // The hydrostatics use the patch only when it has fewer nodes than the mesh has vertices; drag probes do not
+    // count (the action decides for its drag apart).
+    const std::size_t points = mesh.vertices.size();
     const Eigen::Vector3d c = pose * Eigen::Vector3d::Zero();
     const WaterPatch* p = nullptr;
     // The action builds a patch only over Gerstner water (whose query is an iterative solve).

@@ -104,6 +104,9 @@ constexpr double kCurvedWaterTolerance = 20.0;
 /// on waves instead of the curved-water model, dimensionless. The measured error is about a fifth of the estimate
 /// (TreeHydrostatics.cpp): at 0.0025 the plane's worst error stays near 0.05 % of V, half the accuracy bar.
 constexpr double kPlaneWaterTolerance = 0.0025;
+/// Fewest triangles of a mesh for which treeHydrostatics may keep that plane on waves (a low-poly mesh's long
+/// triangles are not represented by its median leaf).
+constexpr std::size_t kPlaneWaterMinTriangles = 1000;
 
 /// The exact-mesh method on curved water (design.md 2.5): the water over each triangle that can be wet is the
 /// quadratic through its heights at the corners and side midpoints (one height per vertex and per edge, from

@@ -150,11 +150,15 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
     // wet area is ≲ K₂h²/(8 T) of V (T the mean thickness V/A). Measured against the divergence-theorem reference in
     // the scaling sea (tests/bench/test_wave_methods.cpp, "fine meshes"): the 850-triangle boat, estimate 0.0051,
     // plane 0.100 % of V worst, curved 0.006 % at 7× the time; the 3,400-triangle boat, estimate 0.0013, plane 0.026 %,
-    // curved 0.003 % at 15× the time. So the plane is kept while the estimate is ≤ kPlaneWaterTolerance.
+    // curved 0.003 % at 15× the time. So the plane is kept while the estimate is ≤ kPlaneWaterTolerance, on meshes of
+    // at least kPlaneWaterMinTriangles triangles: the median leaf does not stand for a low-poly mesh's long slivers
+    // (a 16-sided cylinder's sides run its whole length), and a low-poly mesh's curved evaluation is cheap.
     if (!flat && tree.medianLeafRadius > 0.35 * maxRadius) {
         const double planeEstimate = patch->curvatureBound() * tree.medianLeafRadius * tree.medianLeafRadius /
                                      (8.0 * std::max(thickness, 1e-300));
-        return curved && !(planeEstimate <= kPlaneWaterTolerance)
+        const bool planeSuffices =
+            mesh.triangles.size() >= kPlaneWaterMinTriangles && planeEstimate <= kPlaneWaterTolerance;
+        return curved && !planeSuffices
                    ? curvedHydrostatics(mesh, tree.edges, pose, water, time, fluidDensity, gravity, torqueReference,
                                         thickness, patch)
                    : vertexHydrostatics(tree.shares, pose, water, time, fluidDensity, gravity, torqueReference, patch);
