@@ -2,6 +2,7 @@
 
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 #include "scene/ChildProcessImport.h"
+#include "scene/ModelPreparation.h"
 #include "scene/ModelSize.h"
 #include "scene/NumberFormat.h"
 #include "scene/SceneErrors.h"
@@ -55,6 +56,13 @@ void addHydrostaticsCommand(CLI::App& app, HydrostaticsOptions& o) {
                     "automatic level of detail: worst volume error allowed, % of the body's volume");
     sub->add_option("--import-timeout", o.import_timeout, "time limit of the mesh import, s (default 10)");
     sub->add_flag("--json", o.json, "print one JSON object instead of a table");
+    sub->add_flag("--repair", o.repair,
+                  "repair a broken model instead of refusing it: remove faces given twice, turn faces to agree, close "
+                  "each hole with the least-area cap of its rim (an open-deck hull is closed at its gunwale); says "
+                  "what it did and the volume before and after");
+    sub->add_flag("--convex-hull", o.convex_hull,
+                  "replace the model by the convex hull of its vertices (works on any model; states the volume it "
+                  "adds)");
 }
 
 namespace {
@@ -169,11 +177,15 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     std::vector<MeshWarning> warnings;
     TriangleMesh mesh;
     MeshReport report;
+    PreparedModel prepared;
     try {
         mesh = importMeshInChildProcess(o.mesh, o.scale, o.import_timeout, &warnings);
         // Name the file as the importer does (its name, not the whole path) in every message.
         const std::string name = std::filesystem::path(o.mesh).filename().string();
-        report = prepareMesh(mesh, name.empty() ? o.mesh : name);
+        prepared = prepareModel(mesh, name.empty() ? o.mesh : name, ModelChoices{o.repair, o.convex_hull},
+                                "--repair closes holes and fixes orientation; --convex-hull replaces the model by its "
+                                "hull");
+        report = prepared.report;
     } catch (const MeshError& e) {
         throw UsageError(e.what());
     }
@@ -257,6 +269,27 @@ int runHydrostatics(const HydrostaticsOptions& o) {
                      {"volume", dry.volume},
                      {"centre_of_volume", vec(dry.centre)},
                      {"inertia_unit_density", inertia}};
+        {
+            // What --repair and --convex-hull did (null when not asked for).
+            const MeshRepairReport& r = report.repair;
+            auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+            j["repair"] = o.repair && !prepared.hulled
+                              ? nlohmann::json{{"duplicate_faces_removed", r.duplicate_faces_removed},
+                                               {"faces_reoriented", r.faces_reoriented},
+                                               {"paired_nonmanifold_edges", r.paired_nonmanifold_edges},
+                                               {"holes_closed", r.holes_closed},
+                                               {"hole_edges", r.hole_edges},
+                                               {"area_added", r.area_added},
+                                               {"volume_before", number(r.volume_before)},
+                                               {"volume_after", number(r.volume_after)}}
+                              : nlohmann::json(nullptr);
+            j["convex_hull"] = prepared.hulled
+                                   ? nlohmann::json{{"volume", prepared.hullVolume},
+                                                    {"model_volume", prepared.modelVolume
+                                                                         ? nlohmann::json(*prepared.modelVolume)
+                                                                         : nlohmann::json(nullptr)}}
+                                   : nlohmann::json(nullptr);
+        }
         j["method"] = {{"name", btBuoyancyMethodName(method)}, {"texture", texture}, {"samples", sampleCount},
                        {"level_of_detail", btBuoyancyPickLevelOfDetail(settings, triangles).description}};
         j["submerged"] = {{"volume", isWet ? wet.submerged_volume : 0.0},

@@ -27,6 +27,8 @@ struct HydrostaticsOptions {
     double error_budget = 0;                  ///< automatic level of detail: worst volume error allowed, % (0: none)
     double import_timeout = 10.0;             ///< s, time limit of the child process that runs assimp
     bool json = false;                        ///< print one JSON object instead of a table
+    bool repair = false;                      ///< repair what is safe to repair (holes, orientation, faces given twice)
+    bool convex_hull = false;                 ///< replace the model by the convex hull of its vertices
 };
 
 /// Register the subcommand on `app`; when it is chosen, `run` is set to the function to call after parsing.

@@ -53,7 +53,7 @@ SceneShape readShape(const Reader& r, const json& j, const std::string& key, con
         }
         if (j.contains("resolution")) s.resolution = r.integer(j["resolution"], key + ".resolution", 8, 1024);
     } else if (s.type == "mesh") {
-        r.allowKeys(j, key, {"type", "file", "scale"});
+        r.allowKeys(j, key, {"type", "file", "scale", "repair", "convex_hull", "open_top"});
         if (!j.contains("file")) r.fail(key + ".file", "missing");
         const std::string file = r.string(j["file"], key + ".file");
         std::filesystem::path p(file);
@@ -62,6 +62,11 @@ SceneShape readShape(const Reader& r, const json& j, const std::string& key, con
         if (!std::filesystem::is_regular_file(p, ec)) r.fail(key + ".file", "no such file: " + p.string());
         s.file = p.string();
         if (j.contains("scale")) s.scale = r.number(j["scale"], key + ".scale", 0.0, kBig, true);
+        if (j.contains("repair")) s.repair = r.boolean(j["repair"], key + ".repair");
+        if (j.contains("convex_hull")) s.convexHull = r.boolean(j["convex_hull"], key + ".convex_hull");
+        if (j.contains("open_top")) s.openTop = r.boolean(j["open_top"], key + ".open_top");
+        if (s.openTop && s.convexHull)
+            r.fail(key + ".open_top", "cannot be used with \"convex_hull\": a hull has no opening");
     } else {
         r.fail(key + ".type", "unknown shape type \"" + s.type + "\" (box, sphere, cylinder or mesh)");
     }
@@ -182,6 +187,11 @@ SceneBody readBody(const Reader& r, const json& j, const std::string& key, std::
         else r.fail(key + ".collision", "unknown value \"" + c + "\" (hull, mesh or none)");
     }
     b.flooding = readSceneFlooding(j, key, directory, [&](const std::string& k, const std::string& w) { r.fail(k, w); });
+    if (b.shape.openTop && !b.flooding.enabled) {
+        // Water coming in through an open top needs somewhere to go: an automatic graph of the closed hull.
+        b.flooding.enabled = true;
+        b.flooding.automatic = true;
+    }
     if (b.flooding.enabled && b.body.fixed) r.fail(key + ".water_graph", "a fixed body cannot hold water");
     if (b.flooding.densityMap.enabled) {  // paper Fig. 15 (SceneGraph.h: SceneDensityMap)
         if (b.body.fixed) r.fail(key + ".density_map", "a fixed body has no mass to distribute");

@@ -28,6 +28,12 @@ struct SceneShape {
     int resolution = 128;                              ///< primitive segments around (sphere: rings = resolution/2)
     std::string file;                                  ///< mesh file, resolved against the scene's folder
     double scale = 1.0;                                ///< mesh scale
+    bool repair = false;      ///< mesh "repair": repair what is safe to repair (holes, orientation, faces given twice)
+    bool convexHull = false;  ///< mesh "convex_hull": replace the model by the convex hull of its vertices
+    /// mesh "open_top": close the model's holes (an open-deck hull's rim) with caps that let water in: the caps'
+    /// samples are permeable (open fraction 1) and feed the body's water graph (an automatic one when the body
+    /// has none), so a swamped boat floods through its deck
+    bool openTop = false;
 };
 
 /// One body of a scene.

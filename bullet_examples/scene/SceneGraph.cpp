@@ -15,6 +15,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 namespace buoyancy::cli {
 
@@ -359,6 +360,22 @@ PermeableSamples buildScenePermeability(const SceneFlooding& flooding, const Wat
             throw std::invalid_argument("permeability.regions[" + std::to_string(i) + "].node: no node named \"" + name + "\"");
     }
     return permeableSamplesFromRegions(samples, regions, graph);
+}
+
+void addOpenTriangles(PermeableSamples& holes, const SurfaceSamples& samples, const WaterGraph& graph,
+                      const std::vector<std::size_t>& triangles) {
+    const std::set<std::size_t> open(triangles.begin(), triangles.end());
+    std::set<std::tuple<double, double, double>> present;
+    for (std::size_t k = 0; k < holes.size(); ++k) present.insert({holes.px[k], holes.py[k], holes.pz[k]});
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        if (!open.count(std::size_t(samples.triangle[i]))) continue;
+        if (present.count({samples.px[i], samples.py[i], samples.pz[i]})) continue;
+        holes.px.push_back(samples.px[i]);
+        holes.py.push_back(samples.py[i]);
+        holes.pz.push_back(samples.pz[i]);
+        holes.openArea.push_back(samples.area[i]);
+        holes.node.push_back(nearestWaterNode(graph, Eigen::Vector3d(samples.px[i], samples.py[i], samples.pz[i])));
+    }
 }
 
 }  // namespace buoyancy::cli

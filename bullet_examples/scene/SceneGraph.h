@@ -83,4 +83,10 @@ PermeableSamples buildScenePermeability(const SceneFlooding& flooding, const Wat
 PermeableSamples buildScenePermeability(const SceneFlooding& flooding, const WaterGraph& graph,
                                         const SurfaceSamples& samples, const TriangleMesh& mesh);
 
+/// Make the samples of `triangles` (a model's openings, e.g. an open-deck hull's deck) fully permeable: each
+/// sample whose triangle is one of them is added to `holes` with its whole area open, feeding its nearest node
+/// (a sample already there is left as it is).
+void addOpenTriangles(PermeableSamples& holes, const SurfaceSamples& samples, const WaterGraph& graph,
+                      const std::vector<std::size_t>& triangles);
+
 }  // namespace buoyancy::cli

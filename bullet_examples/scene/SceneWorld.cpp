@@ -3,6 +3,7 @@
 #include "scene/ChildProcessImport.h"
 #include "scene/SceneErrors.h"
 #include "scene/SceneGraph.h"
+#include "scene/ModelPreparation.h"
 #include "scene/ModelSize.h"
 #include "scene/SceneWater.h"
 
@@ -20,7 +21,9 @@ namespace buoyancy::cli {
 namespace {
 
 /// The mesh of a scene body (primitives are made by the library, files imported in a child process).
-TriangleMesh sceneMesh(const SceneBody& b, std::size_t index, double importTimeout) {
+/// @param[out] openTriangles  with "open_top": the triangles that close the model's holes (its openings)
+TriangleMesh sceneMesh(const SceneBody& b, std::size_t index, double importTimeout,
+                       std::vector<std::size_t>& openTriangles) {
     const SceneShape& s = b.shape;
     const std::string key = "bodies[" + std::to_string(index) + "].shape";
     try {
@@ -28,7 +31,16 @@ TriangleMesh sceneMesh(const SceneBody& b, std::size_t index, double importTimeo
         if (s.type == "sphere") return makeSphereMesh(s.radius, s.resolution, std::max(4, s.resolution / 2 + 1));
         if (s.type == "cylinder") return makeCylinderMesh(s.radius, s.height, s.resolution);
         TriangleMesh mesh = importMeshInChildProcess(s.file, s.scale, importTimeout);
-        prepareMesh(mesh, s.file);
+        const PreparedModel prepared =
+            prepareModel(mesh, s.file, ModelChoices{s.repair || s.openTop, s.convexHull},
+                         "\"repair\": true closes holes and fixes orientation; \"convex_hull\": true replaces the "
+                         "model by its hull");
+        for (const MeshWarning& w : prepared.report.warnings) std::cerr << "warning: " << key << ": " << w.message << '\n';
+        if (s.openTop) {
+            if (prepared.report.repair.holes_closed == 0)
+                throw UsageError("open_top: " + s.file + " has no hole to open (it is closed): leave \"open_top\" out");
+            openTriangles = prepared.report.repair.hole_triangles;
+        }
         if (const auto hint = modelSizeHint(mesh, s.scale))
             std::cerr << "warning: " << key << ": " << s.file << ": the model's largest side is " << hint->side
                       << " m (after \"scale\": " << s.scale << "): is it in another unit? e.g. \"scale\": "
@@ -56,9 +68,10 @@ SceneWorld::~SceneWorld() {
 std::unique_ptr<SceneWorld> buildSceneWorld(const Scene& scene, double importTimeout) {
     // Build every shape before anything runs (nothing runs on a half-read scene).
     std::vector<std::shared_ptr<const btBuoyancyShape>> shapes;
+    std::vector<std::vector<std::size_t>> openTriangles(scene.bodies.size());
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
         const SceneBody& b = scene.bodies[i];
-        TriangleMesh mesh = sceneMesh(b, i, importTimeout);
+        TriangleMesh mesh = sceneMesh(b, i, importTimeout, openTriangles[i]);
         try {
             shapes.push_back(btBuoyancyShape::create(std::move(mesh), b.buoyancy));
         } catch (const std::exception& e) {
@@ -75,6 +88,8 @@ std::unique_ptr<SceneWorld> buildSceneWorld(const Scene& scene, double importTim
         try {
             graphs[i] = buildSceneWaterGraph(fl, shapes[i]->getMesh());
             holes[i] = buildScenePermeability(fl, graphs[i], shapes[i]->getDragSamples(), shapes[i]->getMesh());
+            if (!openTriangles[i].empty())
+                addOpenTriangles(holes[i], shapes[i]->getDragSamples(), graphs[i], openTriangles[i]);
         } catch (const std::exception& e) {
             throw UsageError("bodies[" + std::to_string(i) + "].water_graph: " + e.what());
         }

@@ -20,6 +20,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 #include <BulletBuoyancy/bullet/btCollisionShapeMesh.h>
+#include <BulletBuoyancy/bullet/btConvexHullMesh.h>
 #include <BulletBuoyancy/bullet/btFloodingAction.h>
 #include <BulletBuoyancy/bullet/btInteractiveWaterCoupler.h>
 #include <BulletBuoyancy/bullet/btTimeVaryingMassAction.h>

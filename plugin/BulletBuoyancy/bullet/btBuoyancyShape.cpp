@@ -89,7 +89,9 @@ std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::create(buoyancy::Triangl
     // The command line's checks, on every mesh: closed, oriented, outward, a positive volume.
     buoyancy::MeshReport report;
     try {
-        report = buoyancy::prepareMesh(mesh, "mesh");
+        buoyancy::PrepareMeshOptions options;
+        options.acceptTouchingParts = true;  // what a repair accepted (MeshRepair.h)
+        report = buoyancy::prepareMesh(mesh, "mesh", options);
     } catch (const buoyancy::MeshError& e) {
         throw std::invalid_argument(e.what());
     }

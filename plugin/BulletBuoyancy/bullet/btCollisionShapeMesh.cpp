@@ -1,5 +1,7 @@
 #include <BulletBuoyancy/bullet/btCollisionShapeMesh.h>
 
+#include <BulletBuoyancy/bullet/btConvexHullMesh.h>
+
 #include <BulletBuoyancy/mesh/MeshImport.h>
 #include <BulletBuoyancy/mesh/MeshRepair.h>
 #include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
@@ -11,7 +13,6 @@
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
-#include <LinearMath/btConvexHullComputer.h>
 
 #include <Eigen/Geometry>
 
@@ -180,32 +181,12 @@ buoyancy::TriangleMesh coneMesh(double r, double height, double tolerance) {
 }
 
 buoyancy::TriangleMesh hullMesh(const btConvexHullShape& hull) {
-    std::vector<btVector3> points;
-    for (int i = 0; i < hull.getNumPoints(); ++i) points.push_back(hull.getScaledPoint(i));
-    if (points.size() < 4)
-        throw std::invalid_argument("btConvexHullShape: " + std::to_string(points.size()) +
-                                    " points enclose no volume (at least 4 needed)");
-    btConvexHullComputer computer;
-    computer.compute(&points[0].x(), int(sizeof(btVector3)), int(points.size()), btScalar(0), btScalar(0));
-    buoyancy::TriangleMesh m;
-    for (int i = 0; i < computer.vertices.size(); ++i) {
-        const btVector3& v = computer.vertices[i];
-        m.vertices.emplace_back(double(v.x()), double(v.y()), double(v.z()));
+    std::vector<Eigen::Vector3d> points;
+    for (int i = 0; i < hull.getNumPoints(); ++i) {
+        const btVector3 p = hull.getScaledPoint(i);
+        points.emplace_back(double(p.x()), double(p.y()), double(p.z()));
     }
-    for (int f = 0; f < computer.faces.size(); ++f) {
-        const btConvexHullComputer::Edge* start = &computer.edges[computer.faces[f]];
-        std::vector<int> polygon;
-        const btConvexHullComputer::Edge* e = start;
-        do {
-            polygon.push_back(e->getSourceVertex());
-            e = e->getNextEdgeOfFace();
-        } while (e != start && polygon.size() <= std::size_t(computer.vertices.size()));
-        for (std::size_t k = 1; k + 1 < polygon.size(); ++k) m.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
-    }
-    if (m.triangles.size() < 4)
-        throw std::invalid_argument("btConvexHullShape: its points are flat or collinear: they enclose no volume");
-    makeOutward(m);
-    return m;
+    return btConvexHullMesh(points, "btConvexHullShape");
 }
 
 void append(buoyancy::TriangleMesh& into, const buoyancy::TriangleMesh& part, const btTransform& t) {

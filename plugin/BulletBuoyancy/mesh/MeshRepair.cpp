@@ -23,14 +23,17 @@
 #include <BulletBuoyancy/mesh/MeshRepair.h>
 
 #include <BulletBuoyancy/mesh/BoxTree.h>
+#include <BulletBuoyancy/mesh/CloseHoles.h>
 #include <BulletBuoyancy/mesh/ComponentIntersections.h>
 #include <BulletBuoyancy/mesh/MeshImport.h>
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <unordered_map>
@@ -102,9 +105,159 @@ std::string fmt(double v) {
     return s.str();
 }
 
+/// Signed volume Σ a·(b×c)/6 about `ref` (for a closed surface, the enclosed volume; for an open one, the volume
+/// closed by the cone from `ref`).
+double signedVolume(const TriangleMesh& m, const Eigen::Vector3d& ref) {
+    double six = 0.0;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t)
+        six += (m.corner(t, 0) - ref).dot((m.corner(t, 1) - ref).cross(m.corner(t, 2) - ref));
+    return six / 6.0;
+}
+
+/// Turn triangle t over (its UVs follow).
+void turnOver(TriangleMesh& m, std::size_t t) {
+    std::swap(m.triangles[t][1], m.triangles[t][2]);
+    if (!m.corner_uvs.empty()) std::swap(m.corner_uvs[3 * t + 1], m.corner_uvs[3 * t + 2]);
+}
+
+/// Keep the triangles with keep[t] != 0 (their UVs follow).
+void keepTriangles(TriangleMesh& m, const std::vector<char>& keep) {
+    std::size_t out = 0;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+        if (!keep[t]) continue;
+        m.triangles[out] = m.triangles[t];
+        if (!m.corner_uvs.empty())
+            for (int k = 0; k < 3; ++k) m.corner_uvs[3 * out + k] = m.corner_uvs[3 * t + k];
+        ++out;
+    }
+    m.triangles.resize(out);
+    if (!m.corner_uvs.empty()) m.corner_uvs.resize(3 * out);
+}
+
+/// Faces given more than once (the same three vertices): one of the majority orientation is kept, none when as
+/// many face each way (an inner double wall between two parts, or a two-sided sheet). @return faces removed
+std::size_t removeDuplicateFaces(TriangleMesh& m) {
+    struct Key { std::array<int, 3> v; bool even; std::size_t tri; };
+    std::vector<Key> keys;
+    keys.reserve(m.triangles.size());
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+        const Eigen::Vector3i& tr = m.triangles[t];
+        // Rotate so the smallest index comes first; then the order of the other two gives the orientation.
+        int r = 0;
+        if (tr[1] < tr[r]) r = 1;
+        if (tr[2] < tr[r]) r = 2;
+        const int a = tr[r], b = tr[(r + 1) % 3], c = tr[(r + 2) % 3];
+        keys.push_back({{a, std::min(b, c), std::max(b, c)}, b < c, t});
+    }
+    std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) { return x.v != y.v ? x.v < y.v : x.tri < y.tri; });
+    std::vector<char> keep(m.triangles.size(), 1);
+    std::size_t removed = 0;
+    for (std::size_t i = 0; i < keys.size();) {
+        std::size_t j = i;
+        std::size_t even = 0;
+        while (j < keys.size() && keys[j].v == keys[i].v) even += keys[j++].even ? 1 : 0;
+        const std::size_t group = j - i, odd = group - even;
+        if (group > 1) {
+            bool kept = false;  // keep the first face of the majority orientation
+            for (std::size_t k = i; k < j; ++k) {
+                const bool keepThis = !kept && even != odd && keys[k].even == (even > odd);
+                if (keepThis) kept = true;
+                else { keep[keys[k].tri] = 0; ++removed; }
+            }
+        }
+        i = j;
+    }
+    if (removed > 0) keepTriangles(m, keep);
+    return removed;
+}
+
+/// Turn faces so that every edge shared by exactly two faces is traversed once each way (breadth-first over
+/// those edges; per connected part the orientation given to most of its faces is kept).
+/// @return faces turned over; @throws MeshError for a part that cannot be oriented (a one-sided surface)
+std::size_t orientFaces(TriangleMesh& m) {
+    const std::size_t nt = m.triangles.size();
+    struct Use { int lo, hi, tri; bool forward; };
+    std::vector<Use> uses;
+    uses.reserve(3 * nt);
+    for (std::size_t t = 0; t < nt; ++t)
+        for (int k = 0; k < 3; ++k) {
+            const int a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+            uses.push_back({std::min(a, b), std::max(a, b), int(t), a < b});
+        }
+    std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
+        return x.lo != y.lo ? x.lo < y.lo : (x.hi != y.hi ? x.hi < y.hi : x.tri < y.tri);
+    });
+    // Neighbours across two-face edges: (other face, same direction as given?)
+    std::vector<std::vector<std::pair<int, bool>>> next(nt);
+    for (std::size_t i = 0; i < uses.size();) {
+        std::size_t j = i;
+        while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) ++j;
+        if (j - i == 2) {
+            const bool same = uses[i].forward == uses[i + 1].forward;
+            next[std::size_t(uses[i].tri)].push_back({uses[i + 1].tri, same});
+            next[std::size_t(uses[i + 1].tri)].push_back({uses[i].tri, same});
+        }
+        i = j;
+    }
+    std::vector<signed char> flip(nt, -1);
+    std::size_t conflicts = 0, turned = 0;
+    std::vector<int> part, queue;
+    for (std::size_t seed = 0; seed < nt; ++seed) {
+        if (flip[seed] >= 0) continue;
+        part.clear();
+        queue.assign(1, int(seed));
+        flip[seed] = 0;
+        while (!queue.empty()) {
+            const int f = queue.back();
+            queue.pop_back();
+            part.push_back(f);
+            for (const auto& [g, same] : next[std::size_t(f)]) {
+                // f and g must traverse the edge opposite ways: g is turned iff they were given the same way
+                // XOR f is turned.
+                const auto want = static_cast<signed char>((same ? 1 : 0) ^ flip[std::size_t(f)]);
+                if (flip[std::size_t(g)] < 0) { flip[std::size_t(g)] = want; queue.push_back(g); }
+                else if (flip[std::size_t(g)] != want) ++conflicts;
+            }
+        }
+        std::size_t flips = 0;
+        for (int f : part) flips += std::size_t(flip[std::size_t(f)]);
+        const bool invert = 2 * flips > part.size();  // keep the orientation most faces were given
+        for (int f : part)
+            if ((flip[std::size_t(f)] != 0) != invert) { turnOver(m, std::size_t(f)); ++turned; }
+    }
+    if (conflicts > 0)
+        throw MeshError("cannot be repaired: the surface cannot be oriented consistently (one-sided, like a Moebius "
+                        "strip): " + std::to_string(std::max<std::size_t>(1, conflicts / 2)) + " edges disagree whichever way its faces turn");
+    return turned;
+}
+
+/// Bounding box of the mesh's referenced vertices.
+Eigen::AlignedBox3d bboxOf(const TriangleMesh& m) {
+    Eigen::AlignedBox3d b;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) b.extend(m.corner(t, k));
+    return b;
+}
+
+/// The warning that says what the repair did.
+std::string repairSummary(const std::string& sourceName, const MeshRepairReport& r) {
+    std::string done;
+    auto add = [&](const std::string& what) { done += (done.empty() ? "" : ", ") + what; };
+    if (r.duplicate_faces_removed > 0) add("removed " + count(r.duplicate_faces_removed, "face", "faces") + " given twice");
+    if (r.faces_reoriented > 0) add("turned " + count(r.faces_reoriented, "face", "faces") + " to agree with their neighbours");
+    if (r.holes_closed > 0)
+        add("closed " + count(r.holes_closed, "hole", "holes") + " (" + count(r.hole_edges, "boundary edge", "boundary edges") +
+            ", " + fmt(r.area_added) + " m^2 added)");
+    if (r.flat_parts_removed > 0)
+        add("removed " + count(r.flat_parts_removed, "flat part", "flat parts") + " enclosing no volume");
+    return sourceName + ": repaired: " + done + "; volume " + fmt(r.volume_before) + " m^3 before (" +
+           (r.holes_closed > 0 ? "open surface closed through its bounding-box centre" : "as given") + "), " +
+           fmt(r.volume_after) + " m^3 after";
+}
+
 }  // namespace
 
-MeshReport prepareMesh(TriangleMesh& mesh, const std::string& sourceName) {
+MeshReport prepareMesh(TriangleMesh& mesh, const std::string& sourceName, const PrepareMeshOptions& options) {
     auto fail = [&](const std::string& problem) { return MeshError(sourceName + ": " + problem); };
     MeshReport report;
     report.input_triangles = mesh.triangles.size();
@@ -223,6 +376,29 @@ MeshReport prepareMesh(TriangleMesh& mesh, const std::string& sourceName) {
     mesh.vertices = std::move(verts);
     mesh.triangles = std::move(tris);
     mesh.corner_uvs = std::move(cuvs);
+
+    // --- repair (opt-in): duplicate faces, orientation, holes ---
+    MeshRepairReport& repair = report.repair;
+    double volumeBeforeRepair = std::numeric_limits<double>::quiet_NaN();
+    if (options.repair) {
+        const Eigen::Vector3d centre = box.center();
+        const double before = signedVolume(mesh, centre);
+        try {
+            repair.duplicate_faces_removed = removeDuplicateFaces(mesh);
+            if (mesh.triangles.empty()) throw MeshError("no triangles left after removing faces given twice");
+            repair.faces_reoriented = orientFaces(mesh);
+            const HoleClosing closing = closeHoles(mesh, options.maxHoleEdges, minDoubleArea);
+            repair.holes_closed = closing.holes;
+            repair.hole_edges = closing.boundary_edges;
+            repair.area_added = closing.area_added;
+            repair.hole_triangles = closing.triangles;
+            repair.hole_of_triangle = closing.hole_of_triangle;
+        } catch (const MeshError& e) {
+            throw fail(e.what());
+        }
+        volumeBeforeRepair = std::abs(before);
+        if (repair.changed()) repair.volume_before = volumeBeforeRepair;
+    }
     const std::size_t nt = mesh.triangles.size();
 
     // --- edges: closed, manifold, consistently oriented ---
@@ -244,8 +420,18 @@ MeshReport prepareMesh(TriangleMesh& mesh, const std::string& sourceName) {
         while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
         const std::size_t uses = j - i;
         if (uses == 1) ++boundary;
-        else if (uses > 2) ++nonManifold;
-        else {
+        else if (uses > 2) {
+            // Repairing: 2k faces, k each way, are a closed surface touching itself along the edge (two parts
+            // sharing an edge): pair each face one way with one the other way; the integrals need only that.
+            std::vector<int> fwd, back;
+            for (std::size_t k = i; k < j; ++k) (edges[k].forward ? fwd : back).push_back(edges[k].tri);
+            if ((options.repair || options.acceptTouchingParts) && fwd.size() == back.size()) {
+                for (std::size_t k = 0; k < fwd.size(); ++k) sets.unite(fwd[k], back[k]);
+                ++repair.paired_nonmanifold_edges;
+            } else {
+                ++nonManifold;
+            }
+        } else {
             if (edges[i].forward == edges[i + 1].forward) ++inconsistent;
             sets.unite(edges[i].tri, edges[i + 1].tri);
         }
@@ -260,14 +446,15 @@ MeshReport prepareMesh(TriangleMesh& mesh, const std::string& sourceName) {
             problems.push_back("inconsistent orientation: " + count(inconsistent, "edge", "edges") +
                                " used twice in the same direction (flipped triangles)");
         if (!problems.empty()) {
-            std::string msg;
-            for (const std::string& p : problems) msg += (msg.empty() ? "" : "; ") + p;
+            std::string msg = options.repair ? "cannot be repaired: " : "";
+            for (const std::string& p : problems) msg += (msg.empty() || msg.back() == ' ' ? "" : "; ") + p;
             throw fail(msg);
         }
     }
 
     // --- components ---
     std::vector<Component> comps;
+    std::vector<std::size_t> flat;  // repairing: parts enclosing no volume
     {
         std::unordered_map<int, int> rootToComp;
         for (std::size_t t = 0; t < nt; ++t) {
@@ -287,9 +474,46 @@ MeshReport prepareMesh(TriangleMesh& mesh, const std::string& sourceName) {
             six += (mesh.corner(t, 0) - ref).dot((mesh.corner(t, 1) - ref).cross(mesh.corner(t, 2) - ref));
         comp.volume = six / 6.0;
         const double d = comp.box.diagonal().norm();
-        if (std::abs(comp.volume) <= kFlatRelative * d * d * d)
+        if (std::abs(comp.volume) <= kFlatRelative * d * d * d) {
+            if (options.repair) { flat.push_back(c); continue; }  // a sheet (e.g. a fin closed by its own cap)
             throw fail("flat component: component " + std::to_string(c + 1) + " of " + std::to_string(comps.size()) +
                        " is a closed surface enclosing no volume");
+        }
+    }
+    if (!flat.empty()) {
+        // Repairing: parts enclosing no volume displace no water; drop them and check the rest (closed now, so the
+        // second pass repairs nothing and keeps the triangle order: the hole triangles' indices stay valid after
+        // the shift; it accepts the paired edges again).
+        std::vector<char> keep(nt, 1);
+        for (std::size_t c : flat)
+            for (int t : comps[c].tris) keep[std::size_t(t)] = 0;
+        std::vector<std::size_t> shifted(nt, 0);
+        std::size_t kept = 0;
+        for (std::size_t t = 0; t < nt; ++t) shifted[t] = kept, kept += keep[t] ? 1 : 0;
+        if (kept == 0) throw fail("cannot be repaired: every part is flat (encloses no volume)");
+        std::vector<std::size_t> holeTris, holeOf;
+        for (std::size_t k = 0; k < repair.hole_triangles.size(); ++k)
+            if (keep[repair.hole_triangles[k]]) {
+                holeTris.push_back(shifted[repair.hole_triangles[k]]);
+                holeOf.push_back(repair.hole_of_triangle[k]);
+            }
+        keepTriangles(mesh, keep);
+        PrepareMeshOptions check;  // no repair: only the pairing the first pass accepted
+        check.acceptTouchingParts = true;
+        MeshReport inner = prepareMesh(mesh, sourceName, check);
+        MeshReport out = report;
+        out.repair.hole_triangles = std::move(holeTris);
+        out.repair.hole_of_triangle = std::move(holeOf);
+        out.repair.flat_parts_removed = flat.size();
+        out.repair.paired_nonmanifold_edges = inner.repair.paired_nonmanifold_edges;
+        out.repair.volume_before = volumeBeforeRepair;
+        out.components = inner.components;
+        out.flipped_components = inner.flipped_components;
+        out.cavities = inner.cavities;
+        for (const MeshWarning& w : inner.warnings) out.warnings.push_back(w);
+        out.repair.volume_after = signedVolume(mesh, bboxOf(mesh).center());
+        out.warnings.push_back({repairSummary(sourceName, out.repair)});
+        return out;
     }
     report.components = comps.size();
 
@@ -383,6 +607,10 @@ MeshReport prepareMesh(TriangleMesh& mesh, const std::string& sourceName) {
         if (!(total > kFlatRelative * diag * diag * diag))
             throw fail("encloses no positive volume: the components add up to " + fmt(total) +
                        " m^3 (a cavity larger than its body, or a surface crossing itself)");
+        if (repair.changed()) {
+            repair.volume_after = total;
+            report.warnings.push_back({repairSummary(sourceName, repair)});
+        }
     }
 
     // --- components that intersect each other (one BVH pass over all triangles) ---
