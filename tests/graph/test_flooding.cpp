@@ -308,3 +308,35 @@ TEST_CASE("an automatic graph floods a holed boat through the runner", "[graph][
     std::error_code ec;
     std::filesystem::remove_all(dir, ec);
 }
+
+TEST_CASE("scenes: an open boat swamped by waves floods through its deck and sinks, the decked one floats",
+          "[graph][cli]") {
+    // Both boats are bullet_examples/models/open_boat.obj with 2300 kg: "open_top" makes the deck an opening,
+    // "repair" closes it. Closed hull V = 3.0 m³ (ρ V = 3000 kg > 2300 kg: floats with 0.15 m of freeboard), waves of
+    // 0.4 m amplitude. The open boat's automatic graph holds fill × V = 0.9 × V; with it full, 2300 kg + 0.9 ρ V
+    // exceeds ρ V: it must go down to the seabed (−8 m).
+    const std::string dir = std::string(BUOYANCY_SOURCE_DIR) + "/bullet_examples/scenes/";
+    const auto out = std::filesystem::temp_directory_path() / ("buoyancy_open_boat_" + std::to_string(::getpid()));
+    REQUIRE(cli::runSceneCommand(dir + "open_boat_swamp.json", out.string(), 15.0) == 0);
+    const auto rows = readCsv(out.string() + "/trajectory.csv");
+    REQUIRE(!rows.empty());
+    const auto& last = rows.back();
+    // Rows alternate open, decked; take the last of each.
+    const auto& decked = last;
+    const auto& open = rows[rows.size() - 2];
+    REQUIRE(open.at("mass") > 0);
+    // Flooded to the graph's capacity: 0.9 × the closed hull's volume (its mean submerged volume when sunk, V_sub = V).
+    CHECK(open.at("water_volume") == Approx(0.9 * open.at("submerged_volume")).epsilon(1e-3));
+    CHECK(open.at("y") < -6.0);
+    CHECK(decked.at("water_volume") == 0.0);
+    double lowest = 0, meanSub = 0;
+    int n = 0;
+    for (std::size_t i = 1; i < rows.size(); i += 2) {
+        lowest = std::min(lowest, rows[i].at("y"));
+        if (rows[i].at("t") >= 5.0) { meanSub += rows[i].at("submerged_volume"); ++n; }
+    }
+    CHECK(lowest > -2.0);                                  // rides the waves, never goes down
+    CHECK(meanSub / n == Approx(2300.0 / 1000.0).epsilon(0.1)); // on average it displaces its own mass (Archimedes)
+    std::error_code ec;
+    std::filesystem::remove_all(out, ec);
+}
