@@ -98,7 +98,7 @@ TEST_CASE("close holes: a non-convex (L-shaped) planar hole is triangulated insi
     CHECK(tetraVolume(m) == Approx(3.0 * h).epsilon(1e-12));
 }
 
-TEST_CASE("close holes: a closed mesh is left as it is; a hole over the limit is refused", "[mesh][repair][errors]") {
+TEST_CASE("close holes: a closed mesh is left as it is and a hole over the limit is refused", "[mesh][repair][errors]") {
     std::vector<Eigen::Vector2d> square{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     TriangleMesh m = openPrism(square, 1.0, Eigen::Vector2d(0.5, 0.5));
     if (tetraVolume(m) < 0) for (auto& t : m.triangles) std::swap(t[1], t[2]);
