@@ -132,7 +132,7 @@ TEST_CASE("hydrostatics --repair on Debian's broken test models", "[cli][repair]
     }
 }
 
-TEST_CASE("hydrostatics --convex-hull: a cube's hull is the cube; the volume added is stated", "[cli][repair]") {
+TEST_CASE("hydrostatics --convex-hull: a cube's hull is the cube and the volume added is stated", "[cli][repair]") {
     const std::string obj = scratchDir("hull") + "/box.obj";
     writeBoxObj(obj, 2.0, 1.0, 1.0);
     const auto j = runJson({"hydrostatics", obj, "--convex-hull", "--json"});
