@@ -119,12 +119,7 @@ TEST_CASE("close holes: two holes touching at one vertex are closed separately",
     // The unit cube (12 triangles) without two triangles that share only corner 7 = (1,1,1): one from the top
     // face (z = 1) and one from the face x = 1. The boundary walks through corner 7 twice.
     TriangleMesh m;
-    for (int k = 0; k < 8; ++k) m.vertices.emplace_back(k & 1, (k >> 1) & 1, (k >> 2) & 1);
-    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : quads) {
-        m.triangles.emplace_back(q[0], q[1], q[2]);
-        m.triangles.emplace_back(q[0], q[2], q[3]);
-    }
+    appendUnitCube(m);
     // (4,7,6) of the top and (1,3,7) of the side x = 1 share only vertex 7.
     std::vector<Eigen::Vector3i> kept;
     for (const auto& t : m.triangles)

@@ -18,15 +18,7 @@ using Catch::Matchers::StartsWith;
 namespace {
 
 /// The unit cube [0,1]³ shifted by `offset`, outward, appended to m.
-void addCube(TriangleMesh& m, const Eigen::Vector3d& offset = Eigen::Vector3d::Zero()) {
-    const int base = int(m.vertices.size());
-    for (int k = 0; k < 8; ++k) m.vertices.push_back(offset + Eigen::Vector3d(k & 1, (k >> 1) & 1, (k >> 2) & 1));
-    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : quads) {
-        m.triangles.emplace_back(base + q[0], base + q[1], base + q[2]);
-        m.triangles.emplace_back(base + q[0], base + q[2], base + q[3]);
-    }
-}
+void addCube(TriangleMesh& m, const Eigen::Vector3d& offset = Eigen::Vector3d::Zero()) { appendUnitCube(m, offset); }
 
 PrepareMeshOptions repairing() {
     PrepareMeshOptions o;

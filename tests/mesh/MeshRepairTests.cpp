@@ -22,12 +22,7 @@ namespace {
 /// The hand-written unit cube [0,1]³ (same corner numbering and outward quads as generate.py).
 TriangleMesh unitCube() {
     TriangleMesh m;
-    for (int k = 0; k < 8; ++k) m.vertices.emplace_back(k & 1, (k >> 1) & 1, (k >> 2) & 1);
-    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : quads) {
-        m.triangles.emplace_back(q[0], q[1], q[2]);
-        m.triangles.emplace_back(q[0], q[2], q[3]);
-    }
+    appendUnitCube(m);
     return m;
 }
 
