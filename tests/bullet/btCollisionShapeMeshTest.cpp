@@ -8,6 +8,7 @@
 #include <BulletBuoyancy/bullet/btCollisionShapeMesh.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
+#include <BulletCollision/Gimpact/btGImpactShape.h>
 #include <btBulletDynamicsCommon.h>
 #include <catch2/catch.hpp>
 
@@ -122,6 +123,55 @@ TEST_CASE("collision shape mesh: primitives have their closed-form volume and Bu
         t.setOrigin(btVector3(0.6f, 0, 0));
         overlapping.addChildShape(t, &b);
         CHECK_THROWS_WITH(btCollisionShapeToMesh(overlapping, tol), Contains("do not overlap"));
+    }
+}
+
+TEST_CASE("collision shape mesh: multi-sphere, convex triangle mesh and GImpact mesh shapes", "[bullet][shapes]") {
+    const double kPi = 3.14159265358979323846;
+    const double tol = 1e-3;
+    SECTION("two equal spheres are a capsule (their hull), as Bullet collides them") {
+        const btVector3 centres[2] = {btVector3(0, -0.5, 0), btVector3(0, 0.5, 0)};
+        const btScalar radii[2] = {btScalar(0.3), btScalar(0.3)};
+        btMultiSphereShape shape(centres, radii, 2);
+        const double r = 0.3, length = 1.0;
+        const double capsule = kPi * r * r * length + 4.0 / 3.0 * kPi * r * r * r;
+        const double v = volumeOf(btCollisionShapeToMesh(shape, tol));
+        CHECK(v <= capsule);                  // inscribed
+        CHECK(v >= capsule * (1 - 2 * tol));  // each sphere within the tolerance, the hull about as close
+        // Scaled by 2 on every axis: eight times the volume.
+        shape.setLocalScaling(btVector3(2, 2, 2));
+        CHECK(volumeOf(btCollisionShapeToMesh(shape, tol)) == Approx(8 * v).epsilon(2 * tol));
+    }
+    // A closed 2 x 1 x 1 box as a striding mesh (12 triangles, outward).
+    btTriangleMesh boxTriangles;
+    {
+        const btVector3 c[8] = {{-1, -0.5, -0.5}, {1, -0.5, -0.5}, {-1, 0.5, -0.5}, {1, 0.5, -0.5},
+                                {-1, -0.5, 0.5},  {1, -0.5, 0.5},  {-1, 0.5, 0.5},  {1, 0.5, 0.5}};
+        const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+        for (const auto& q : quads) {
+            boxTriangles.addTriangle(c[q[0]], c[q[1]], c[q[2]]);
+            boxTriangles.addTriangle(c[q[0]], c[q[2]], c[q[3]]);
+        }
+    }
+    SECTION("btConvexTriangleMeshShape: the mesh itself, scaled") {
+        btConvexTriangleMeshShape shape(&boxTriangles);
+        CHECK(volumeOf(btCollisionShapeToMesh(shape, tol)) == Approx(2.0).epsilon(1e-6));
+        shape.setLocalScaling(btVector3(1, 3, 1));
+        CHECK(volumeOf(btCollisionShapeToMesh(shape, tol)) == Approx(6.0).epsilon(1e-6));
+    }
+    SECTION("btGImpactMeshShape: the mesh itself; an open one is refused by name") {
+        btGImpactMeshShape shape(&boxTriangles);
+        CHECK(volumeOf(btCollisionShapeToMesh(shape, tol)) == Approx(2.0).epsilon(1e-6));
+        btTriangleMesh open;
+        open.addTriangle(btVector3(0, 0, 0), btVector3(1, 0, 0), btVector3(0, 1, 0));
+        open.addTriangle(btVector3(0, 0, 0), btVector3(0, 1, 0), btVector3(0, 0, 1));
+        btGImpactMeshShape openShape(&open);
+        CHECK_THROWS_WITH(btCollisionShapeToMesh(openShape, tol),
+                          Contains("btGImpactMeshShape") && Contains("open surface") && Contains("must be closed"));
+    }
+    SECTION("btBvhTriangleMeshShape is refused with the reason") {
+        btBvhTriangleMeshShape shape(&boxTriangles, true);
+        CHECK_THROWS_WITH(btCollisionShapeToMesh(shape, tol), Contains("static bodies only"));
     }
 }
 

@@ -11,7 +11,12 @@
 #include <BulletCollision/CollisionShapes/btCompoundShape.h>
 #include <BulletCollision/CollisionShapes/btConeShape.h>
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/CollisionShapes/btConvexTriangleMeshShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
+#include <BulletCollision/CollisionShapes/btMultiSphereShape.h>
+#include <BulletCollision/CollisionShapes/btStridingMeshInterface.h>
+#include <BulletCollision/CollisionShapes/btTriangleCallback.h>
+#include <BulletCollision/Gimpact/btGImpactShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
 #include <Eigen/Geometry>
@@ -189,6 +194,55 @@ buoyancy::TriangleMesh hullMesh(const btConvexHullShape& hull) {
     return btConvexHullMesh(points, "btConvexHullShape");
 }
 
+/// btMultiSphereShape: the convex hull of its spheres, as Bullet collides it. Bullet scales each sphere's centre and
+/// radius by the local scaling per axis (a sphere becomes an ellipsoid under non-uniform scaling): the tessellated
+/// sphere points are scaled the same way before the hull is taken. Each sphere is tessellated to the tolerance, so
+/// the hull of the inscribed polyhedra falls short of the hull of the spheres by about as much.
+buoyancy::TriangleMesh multiSphereMesh(const btMultiSphereShape& shape, double tolerance) {
+    const btVector3 scale = shape.getLocalScaling();
+    std::vector<Eigen::Vector3d> points;
+    for (int i = 0; i < shape.getSphereCount(); ++i) {
+        const double r = double(shape.getSphereRadius(i));
+        if (!(r > 0)) throw std::invalid_argument("btMultiSphereShape: sphere " + std::to_string(i) + " has radius " +
+                                                  std::to_string(r) + " (must be positive)");
+        const btVector3& c = shape.getSpherePosition(i);
+        for (const Eigen::Vector3d& v : sphereMesh(r, tolerance).vertices)
+            points.emplace_back(double(scale.x()) * (double(c.x()) + v.x()), double(scale.y()) * (double(c.y()) + v.y()),
+                                double(scale.z()) * (double(c.z()) + v.z()));
+    }
+    return btConvexHullMesh(points, "btMultiSphereShape");
+}
+
+/// The triangles of a striding mesh (btConvexTriangleMeshShape, btGImpactMeshShape), scaled as Bullet scales them
+/// (the mesh interface holds the shape's local scaling). Corners are welded and the mesh checked later
+/// (btBuoyancyShape::create): an open mesh is refused there.
+buoyancy::TriangleMesh stridingMesh(const btStridingMeshInterface& mesh) {
+    struct Collect : btInternalTriangleIndexCallback {
+        buoyancy::TriangleMesh m;
+        void internalProcessTriangleIndex(btVector3* triangle, int, int) override {
+            const int base = int(m.vertices.size());
+            for (int k = 0; k < 3; ++k)
+                m.vertices.emplace_back(double(triangle[k].x()), double(triangle[k].y()), double(triangle[k].z()));
+            m.triangles.emplace_back(base, base + 1, base + 2);
+        }
+    } collect;
+    const btScalar big = btScalar(BT_LARGE_FLOAT);
+    mesh.InternalProcessAllTriangles(&collect, btVector3(-big, -big, -big), btVector3(big, big, big));
+    return collect.m;
+}
+
+/// A triangle mesh shape's triangles must enclose a volume: welded and checked here so that the message names the
+/// shape ("btGImpactMeshShape: open surface: 4 boundary edges").
+buoyancy::TriangleMesh closedTriangleMesh(buoyancy::TriangleMesh m, const char* what) {
+    if (m.triangles.empty()) throw std::invalid_argument(std::string(what) + ": no triangles");
+    try {
+        buoyancy::prepareMesh(m, what);
+    } catch (const buoyancy::MeshError& e) {
+        throw std::invalid_argument(std::string(e.what()) + " (a triangle mesh shape must be closed to float)");
+    }
+    return m;
+}
+
 void append(buoyancy::TriangleMesh& into, const buoyancy::TriangleMesh& part, const btTransform& t) {
     const int offset = int(into.vertices.size());
     for (const auto& v : part.vertices) {
@@ -229,6 +283,25 @@ buoyancy::TriangleMesh meshOf(const btCollisionShape& shape, double tolerance) {
     }
     case CONVEX_HULL_SHAPE_PROXYTYPE:
         return hullMesh(static_cast<const btConvexHullShape&>(shape));
+    case MULTI_SPHERE_SHAPE_PROXYTYPE:
+        return multiSphereMesh(static_cast<const btMultiSphereShape&>(shape), tolerance);
+    case CONVEX_TRIANGLEMESH_SHAPE_PROXYTYPE: {
+        const btStridingMeshInterface* mesh = static_cast<const btConvexTriangleMeshShape&>(shape).getMeshInterface();
+        if (!mesh) throw std::invalid_argument("btConvexTriangleMeshShape: no mesh");
+        return closedTriangleMesh(stridingMesh(*mesh), "btConvexTriangleMeshShape");
+    }
+    case GIMPACT_SHAPE_PROXYTYPE: {
+        const auto& g = static_cast<const btGImpactShapeInterface&>(shape);
+        if (g.getGImpactShapeType() != CONST_GIMPACT_TRIMESH_SHAPE)
+            throw std::invalid_argument(std::string(shape.getName()) +
+                                        ": only btGImpactMeshShape is supported among the GImpact shapes");
+        const btStridingMeshInterface* mesh = static_cast<const btGImpactMeshShape&>(shape).getMeshInterface();
+        if (!mesh) throw std::invalid_argument("btGImpactMeshShape: no mesh");
+        return closedTriangleMesh(stridingMesh(*mesh), "btGImpactMeshShape");
+    }
+    case TRIANGLE_MESH_SHAPE_PROXYTYPE:
+        throw std::invalid_argument("btBvhTriangleMeshShape: Bullet uses it for static bodies only; for a dynamic "
+                                    "body give the same mesh as a btGImpactMeshShape or a btConvexHullShape");
     case COMPOUND_SHAPE_PROXYTYPE: {
         const auto& c = static_cast<const btCompoundShape&>(shape);
         if (c.getNumChildShapes() == 0) throw std::invalid_argument("btCompoundShape: no children");
@@ -252,7 +325,8 @@ buoyancy::TriangleMesh meshOf(const btCollisionShape& shape, double tolerance) {
     default:
         throw std::invalid_argument(std::string(shape.getName()) +
                                     ": not supported for buoyancy (supported: btBoxShape, btSphereShape, btCapsuleShape, "
-                                    "btCylinderShape, btConeShape, btConvexHullShape and btCompoundShape of those; "
+                                    "btCylinderShape, btConeShape, btConvexHullShape, btMultiSphereShape, closed "
+                                    "btConvexTriangleMeshShape and btGImpactMeshShape, and btCompoundShape of those; "
                                     "give a closed mesh through btBuoyancyShape::create instead)");
     }
 }

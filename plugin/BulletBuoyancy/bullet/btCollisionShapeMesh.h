@@ -18,8 +18,10 @@
 class btCollisionShape;
 
 /// Mesh of `shape` in its own frame, m. Supported: btBoxShape, btSphereShape, btCapsuleShape (X, Y, Z),
-/// btCylinderShape (X, Y, Z), btConeShape (X, Y, Z), btConvexHullShape, and btCompoundShape of those (children
-/// with their transforms, nested; children must not overlap).
+/// btCylinderShape (X, Y, Z), btConeShape (X, Y, Z), btConvexHullShape, btMultiSphereShape (the convex hull of its
+/// spheres, as Bullet collides it), btConvexTriangleMeshShape and btGImpactMeshShape when their triangles are closed
+/// (the mesh itself, not its hull), and btCompoundShape of those (children with their transforms, nested; children
+/// must not overlap). btBvhTriangleMeshShape is refused: Bullet moves it only as a static body.
 /// @param curvedShapeTolerance  the largest relative volume error of a curved shape's tessellation, in (0, 0.1]
 /// @throws std::invalid_argument naming the shape type for a shape that is not supported (a static plane, a height
 ///         field, a triangle mesh, …) or a negative or zero local scaling
