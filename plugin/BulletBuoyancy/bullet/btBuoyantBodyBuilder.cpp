@@ -19,6 +19,23 @@ using buoyancy::MassProperties;
 
 namespace {
 
+/// Bullet's motion state speaks the centre-of-mass frame; the user's speaks the mesh frame (mesh = COM · meshInCom).
+/// `meshInCom` is read at each call: it follows updateMassProperties.
+class MeshFrameMotionState : public btMotionState {
+public:
+    MeshFrameMotionState(btMotionState* user, const btTransform* meshInCom) : m_user(user), m_meshInCom(meshInCom) {}
+    void getWorldTransform(btTransform& com) const override {
+        btTransform mesh;
+        m_user->getWorldTransform(mesh);
+        com = mesh * m_meshInCom->inverse();
+    }
+    void setWorldTransform(const btTransform& com) override { m_user->setWorldTransform(com * *m_meshInCom); }
+
+private:
+    btMotionState* m_user;
+    const btTransform* m_meshInCom;
+};
+
 void requireRange(double v, double lo, bool strict, const std::string& field) {
     if (!std::isfinite(v) || (strict ? !(v > lo) : !(v >= lo)))
         throw std::invalid_argument(field + ": must be a finite number " + (strict ? "> " : ">= ") +
@@ -196,7 +213,11 @@ btBuoyantBody::btBuoyantBody(std::shared_ptr<const btBuoyancyShape> shape, const
     }
 
     const btScalar bodyMass = m_settings.fixed ? btScalar(0) : btScalar(m_massProperties.mass);
-    btRigidBody::btRigidBodyConstructionInfo info(bodyMass, nullptr, bodyShape, moments);
+    if (m_settings.motionState) {
+        m_settings.motionState->setWorldTransform(meshWorldTransform);
+        m_motionState = std::make_unique<MeshFrameMotionState>(m_settings.motionState, &m_meshInCom);
+    }
+    btRigidBody::btRigidBodyConstructionInfo info(bodyMass, m_motionState.get(), bodyShape, moments);
     info.m_startWorldTransform = meshWorldTransform * m_meshInCom.inverse();
     info.m_friction = btScalar(m_settings.friction);
     info.m_restitution = btScalar(m_settings.restitution);

@@ -7,6 +7,7 @@
 
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 
+#include <LinearMath/btMotionState.h>
 #include <LinearMath/btTransform.h>
 
 #include <Eigen/Core>
@@ -61,6 +62,13 @@ struct btBuoyantBodySettings {
     double collisionMargin = 0.005; ///< Bullet collision margin, m, ≥ 0 (Bullet's default 0.04 is large for small bodies)
     double friction = 0.5;          ///< Coulomb friction, ≥ 0
     double restitution = 0.0;       ///< ≥ 0
+
+    ///@name Rendering
+    /// Optional, not owned (must outlive the body): receives the mesh frame's world transform — the frame the model
+    /// was made in, not the centre-of-mass frame Bullet moves — interpolated by Bullet like any motion state's, so a
+    /// renderer draws the model with it directly. Its getWorldTransform is asked for the mesh frame once, when the
+    /// body is built (after being set to the construction pose), and for kinematic bodies every step.
+    btMotionState* motionState = nullptr;
 
     ///@name Sleeping (design.md 3)
     /// Bullet's defaults (0.8 m/s, 1 rad/s) freeze a slowly bobbing body; these let only a calm one sleep.
@@ -124,6 +132,7 @@ private:
     std::unique_ptr<btTriangleIndexVertexArray> m_meshInterface;
     std::unique_ptr<btCollisionShape> m_childShape;
     std::unique_ptr<btCompoundShape> m_compound;
+    std::unique_ptr<btMotionState> m_motionState; ///< maps the COM frame to the user's mesh-frame motion state
     std::unique_ptr<btRigidBody> m_body;
 };
 
