@@ -59,6 +59,10 @@ btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBu
     if (!m_shape) throw std::invalid_argument("shape: null");
     if (!m_world) throw std::invalid_argument("world: null");
     m_settings.validate();
+    if (m_body->getInvMass() > 0) {
+        const std::string range = btBuoyancyCheckInertiaRange(m_body->getLocalInertia(), "body");
+        if (!range.empty()) throw std::invalid_argument(range);
+    }
     m_ws.resize(m_shape->getSamples().size());
     selectDragClusters();
     m_baseLinearSleep = double(m_body->getLinearSleepingThreshold());

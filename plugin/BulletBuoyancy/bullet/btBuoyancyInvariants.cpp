@@ -75,3 +75,17 @@ void btBuoyancyAssertBody(const btRigidBody& body, const char* file, int line) {
     std::fprintf(stderr, "%s:%d: rigid body invariant broken: %s\n", file, line, problem.c_str());
     std::abort();
 }
+
+std::string btBuoyancyCheckInertiaRange(const btVector3& localInertia, const std::string& what) {
+    if (sizeof(btScalar) > sizeof(float)) return "";
+    const double largest = std::max({double(localInertia.x()), double(localInertia.y()), double(localInertia.z())});
+    if (!(largest > btBuoyancyMaxSinglePrecisionInertia)) return "";
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "%s: moment of inertia %.3g kg m^2 is beyond single-precision Bullet's range (at most %.0e kg m^2: a "
+                  "solid cube of 1000 kg/m^3 about 1.4 km across; Bullet's gyroscopic step overflows float beyond "
+                  "it): use a double-precision build (-DBULLET_BUOYANCY_DOUBLE_PRECISION=ON with Bullet's float64 "
+                  "libraries) or a smaller or lighter body",
+                  what.c_str(), largest, btBuoyancyMaxSinglePrecisionInertia);
+    return buf;
+}

@@ -1,5 +1,7 @@
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 
+#include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>
+
 #include <BulletBuoyancy/bullet/btBulletConvert.h>
 
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
@@ -153,6 +155,8 @@ void btBuoyantBody::applyMassProperties(const MassProperties& mp, btTransform& o
     principal.translation() = mp.centre;
     outMeshInCom = buoyancy::toBullet(principal.inverse());
     outMoments = btVector3(btScalar(moments.x()), btScalar(moments.y()), btScalar(moments.z()));
+    const std::string range = btBuoyancyCheckInertiaRange(outMoments, "mass properties");
+    if (!range.empty()) throw std::invalid_argument(range);
 }
 
 btBuoyantBody::btBuoyantBody(std::shared_ptr<const btBuoyancyShape> shape, const btBuoyantBodySettings& settings,
