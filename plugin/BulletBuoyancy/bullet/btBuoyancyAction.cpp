@@ -61,6 +61,7 @@ btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBu
     m_settings.validate();
     m_ws.resize(m_shape->getSamples().size());
     selectDragClusters();
+    m_activeDensity = m_world->getFluidDensity();
     m_baseLinearSleep = double(m_body->getLinearSleepingThreshold());
     m_baseAngularSleep = double(m_body->getAngularSleepingThreshold());
     // Bodies take turns at their exact evaluations (temporal level of detail): staggered by registration order.
@@ -134,7 +135,7 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     // (design.md 2.5, drag level of detail; settings.dragClusters = 0 keeps every fine sample).
     const buoyancy::DragClusters& c = *m_drag;
     const std::size_t n = c.size();
-    const btWaterSurface& water = *m_world->getWater();
+    const btWaterSurface& water = *m_activeWater;
     const Eigen::Matrix3d R = pose.linear();
     const Eigen::Vector3d t = pose.translation();
     const double r10 = R(1, 0), r11 = R(1, 1), r12 = R(1, 2);
@@ -241,8 +242,9 @@ const buoyancy::SurfaceSamples& btBuoyancyAction::getSamplesInUse() const {
 
 void btBuoyancyAction::dragEvaluationVelocity(const buoyancy::HydrostaticsResult& h, double dt, Eigen::Vector3d& v,
                                               Eigen::Vector3d& w) const {
-    // Added mass as in updateAction (design.md 2.7): (m + m_a) a = F − m g.
-    const double rho = m_world->getFluidDensity();
+    // Added mass as in updateAction (design.md 2.7): (m + m_a) a = F − m g. The density of the water chosen for this
+    // substep (water bodies), or the unbounded water's as it is now.
+    const double rho = m_world->getWaterBodies().empty() ? m_world->getFluidDensity() : m_activeDensity;
     const double m = 1.0 / double(m_body->getInvMass());
     const double ma = m_settings.addedMass ? m_settings.addedMassCoefficient * rho * std::max(h.submerged_volume, 0.0) : 0.0;
     const double meff = m + ma;
@@ -314,8 +316,11 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     m_result.applied = false;
     // A body removed from its world while this action stays in it: do nothing until it is back.
     if (!m_body->getBroadphaseHandle()) return;
+    // The unbounded water, or water bodies (btBuoyancyWorld::addWaterBody): chosen below, once the pose is known.
     const btWaterSurface* water = m_world->getWater();
-    if (!water || m_body->getInvMass() == btScalar(0)) return;
+    const std::vector<btWaterBody>& waterBodies = m_world->getWaterBodies();
+    const bool bounded = !waterBodies.empty();
+    if ((!water && !bounded) || m_body->getInvMass() == btScalar(0)) return;
     // No buoyancy without a gravity along the water's down axis (zero, or a world that is not y-up): say why,
     // forget the history (its fields belong to another gravity) and apply nothing; never a NaN or an exception.
     if (m_world->getGravityStatus() != btBuoyancyStatus::Ok) {
@@ -329,7 +334,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         m_pendingAngularSleep = btScalar(m_baseAngularSleep);
         return;
     }
-    const bool waves = water->isTimeVarying();
+    const bool waves = bounded ? m_world->isAnyWaterBodyTimeVarying() : water->isTimeVarying();
     if (!m_body->isActive() && !waves) {  // calm water: a sleeping body stays asleep
         m_needsPrime = true;
         m_history.clear();
@@ -337,7 +342,6 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     }
 
     const double time = m_world->getTime();
-    const double rho = m_world->getFluidDensity();
     const double g = m_world->getGravity();
     // Everything below is evaluated in the water frame (btWaterFrame: the surface is y = f(x, z, t) there); the
     // impulses and the result are mapped back to the world at the end. Identity for a +y-up world.
@@ -356,9 +360,29 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // a deformable body's bounds follow its vertices
     const Eigen::Vector3d bc = pose * (m_deformable ? m_deformable->getBoundsCentre() : m_shape->getBoundsCentre());
     const double br = m_deformable ? m_deformable->getBoundsRadius() : m_shape->getBoundsRadius();
+    // Water bodies: the one whose region the bounding sphere reaches, nearest the centre of mass (design.md 2.9);
+    // none: no buoyancy and no drag, as above the water. One unbounded water: nothing to choose.
+    int waterBody = -1;
+    if (bounded) {
+        waterBody = m_world->findWaterBody(frame.toWorldPoint(bc), br, toEigen(m_body->getCenterOfMassPosition()));
+        if (waterBody != m_activeWaterBody) {
+            m_history.clear();  // its records belong to another water
+            m_waterCache.reset();
+            m_dragCache.reset();
+            m_probeCache.reset();
+            m_patchCache.reset();
+            m_activeWaterBody = waterBody;
+        }
+        water = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].surface : nullptr;
+        m_activeDensity = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].fluidDensity : m_world->getFluidDensity();
+    } else {
+        m_activeDensity = m_world->getFluidDensity();
+    }
+    m_activeWater = water;
+    const double rho = m_activeDensity;
     double lo = 0, hi = 0;
-    water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
-    if (bc.y() - br >= hi) {
+    if (water) water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
+    if (!water || bc.y() - br >= hi) {
         m_needsPrime = false;  // dry: the missed kick was zero
         m_history.clear();
         m_hasLastCom = false;  // out of the water Bullet's own sleeping test is right again
@@ -575,7 +599,7 @@ double btBuoyancyAction::restEnergy(const buoyancy::HydrostaticsResult& h, doubl
         // Afloat: the energy of a heave whose amplitude moves the submerged volume by kRestVolumeFraction of it,
         // ½ k a² with k = ρ g A and a = ε V / A. A body put to sleep is then that close to its Archimedes draft.
         const double a = kRestVolumeFraction * h.submerged_volume / area;
-        return 0.5 * m_world->getFluidDensity() * g * area * a * a;
+        return 0.5 * m_activeDensity * g * area * a * a;
     }
     // Under water, on the bottom or in the air: the kinetic energy of a speed of kRestSpeedFraction √(g L).
     const double v = kRestSpeedFraction * std::sqrt(g * m_shape->getBoundsRadius());
@@ -598,7 +622,7 @@ double btBuoyancyAction::energyAboveEquilibrium(const buoyancy::HydrostaticsResu
     // (its metacentric part; the torque's energy is then not underestimated by a stiffer axis). A body with no
     // waterline (under water, or out of it) has no such spring: its kinetic energy alone decides.
     const double g = gravityAcc.norm();
-    const double rhoG = m_world->getFluidDensity() * g;
+    const double rhoG = m_activeDensity * g;
     const double area = h.waterline_area;
     if (rhoG > 0 && area > 0 && std::isfinite(area)) {
         const Eigen::Vector3d up = g > 0 ? Eigen::Vector3d(-gravityAcc / g) : Eigen::Vector3d::UnitY();
@@ -645,7 +669,7 @@ double btBuoyancyAction::allowedVelocityDeviation(double waterlineArea, double r
 
 void btBuoyancyAction::correctPose(btHydrostaticsSnapshot& predicted, const Eigen::Vector3d& com,
                                     const Eigen::Matrix3d& rotation) const {
-    btHydrostaticStiffnessCorrection(predicted, com, rotation, m_world->getFluidDensity() * m_world->getGravity());
+    btHydrostaticStiffnessCorrection(predicted, com, rotation, m_activeDensity * m_world->getGravity());
 }
 bool btBuoyancyAction::predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose,
                                            const Eigen::Vector3d& com, double bodyLow, double bodyHigh,
@@ -688,7 +712,7 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
                                           double effectiveMass, double dt) {
     const int interval = m_interval;
     const buoyancy::HydrostaticsResult& h = exact.hydrostatics;
-    const double scale = m_world->getFluidDensity() * m_world->getGravity() * m_shape->getUnitSolid().volume;
+    const double scale = m_activeDensity * m_world->getGravity() * m_shape->getUnitSolid().volume;
     const double diameter = 2.0 * m_shape->getBoundsRadius();
     // Check the predictor against this exact evaluation (one interval past the newest record: a little further than
     // any substep it predicted). A miss makes the body evaluate exactly until two checks in a row pass (one pass after a
@@ -756,7 +780,7 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
     }
     // Stiffness check: extrapolating over an interval is only accurate while the heave is slow against it
     // (ω K dt ≤ 0.3 with ω² = ρ g A_waterline / m_eff, design.md 2.7); a light, stiff body evaluates exactly.
-    const double omega2 = m_world->getFluidDensity() * m_world->getGravity() * h.waterline_area / effectiveMass;
+    const double omega2 = m_activeDensity * m_world->getGravity() * h.waterline_area / effectiveMass;
     const double step = double(interval) * dt;
     if (!(omega2 * step * step <= 0.09)) m_reuseCooldown = std::max(m_reuseCooldown, 1);
     const bool finite = h.force.allFinite() && h.torque.allFinite() && std::isfinite(h.submerged_volume) &&

@@ -181,6 +181,12 @@ private:
     btVector3 m_pendingJ = btVector3(0, 0, 0), m_pendingL = btVector3(0, 0, 0);
     ///@}
     std::uint64_t m_rejected = 0;
+    /// @name The water of the current substep: the world's unbounded water, or the water body chosen (design.md 2.9)
+    ///@{
+    const btWaterSurface* m_activeWater = nullptr; ///< nullptr: no water reaches the body
+    double m_activeDensity = 1000.0;               ///< its ρ_w, kg/m³
+    int m_activeWaterBody = -1;                    ///< index in btBuoyancyWorld::getWaterBodies(), −1: none
+    ///@}
     std::shared_ptr<btBuoyancyDeformable> m_deformable;  ///< re-baked samples of a deformable body
     /// True until the first hydrostatic kick after creation or sleep: Bullet has already applied gravity for
     /// a substep whose buoyancy kick (at the starting pose) was never given; see updateAction.

@@ -1,0 +1,140 @@
+// Several bounded water bodies in one world (btBuoyancyWorld::addWaterBody): each body floats in the water of the
+// region it is in, at that water's level and density; a body outside every region gets no buoyancy and falls;
+// overlapping or malformed regions are refused with a message naming them.
+// Oracles: Archimedes (a box of density ρ_b and height H floats with draft ρ_b / ρ_w · H), free fall.
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
+
+#include <btBulletDynamicsCommon.h>
+#include <catch2/catch.hpp>
+
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+using Catch::Matchers::Contains;
+
+namespace {
+
+constexpr double kGravity = 9.81;  ///< m/s²
+
+/// A y-up Bullet world without an unbounded water, and crates (1 × 0.5 × 1 m boxes) with their actions.
+struct WaterBodiesWorld {
+    btDefaultCollisionConfiguration config;
+    btCollisionDispatcher dispatcher{&config};
+    btDbvtBroadphase broadphase;
+    btSequentialImpulseConstraintSolver solver;
+    btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+    btBuoyancyWorld buoyancy{&world, nullptr};
+    std::vector<std::unique_ptr<btBuoyantBody>> bodies;
+    std::vector<std::unique_ptr<btBuoyancyAction>> actions;
+
+    WaterBodiesWorld() { world.setGravity(btVector3(0, btScalar(-kGravity), 0)); }
+    ~WaterBodiesWorld() {
+        for (auto& a : actions) world.removeAction(a.get());
+        for (auto& b : bodies) world.removeRigidBody(b->getRigidBody());
+    }
+    /// A 1 × 0.5 × 1 m crate of density `density`, kg/m³, centred at (x, y, z), m; returns its index.
+    std::size_t addCrate(double density, double x, double y, double z) {
+        auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(1.0, 0.5, 1.0));
+        btBuoyantBodySettings settings;
+        settings.density = density;
+        const btTransform pose(btQuaternion::getIdentity(), btVector3(btScalar(x), btScalar(y), btScalar(z)));
+        bodies.push_back(std::make_unique<btBuoyantBody>(shape, settings, pose));
+        world.addRigidBody(bodies.back()->getRigidBody());
+        actions.push_back(std::make_unique<btBuoyancyAction>(*bodies.back(), &buoyancy));
+        world.addAction(actions.back().get());
+        return bodies.size() - 1;
+    }
+    void run(double seconds) {
+        for (int i = 0; i < int(seconds * 60 + 0.5); ++i) world.stepSimulation(btScalar(1.0 / 60), 4, btScalar(1.0 / 240));
+    }
+    double centreY(std::size_t i) const { return double(bodies[i]->getRigidBody()->getCenterOfMassPosition().y()); }
+};
+
+btWaterBodyInfo boxWater(const char* name, const btWaterSurface* surface, double density, const btVector3& min,
+                         const btVector3& max) {
+    btWaterBodyInfo info;
+    info.name = name;
+    info.surface = surface;
+    info.fluidDensity = density;
+    info.regionMin = min;
+    info.regionMax = max;
+    return info;
+}
+
+}  // namespace
+
+TEST_CASE("water bodies: a crate in each of two waters floats at its own water's level and density", "[bullet][waters]") {
+    // A pool at y = 0 (fresh water) and a lake at y = 1 (denser water) side by side; a crate of density 500 kg/m³ in
+    // each. Archimedes: draft d = ρ_b / ρ_w · H, so the crate's centre rests at level − d + H/2.
+    WaterBodiesWorld w;
+    const btFlatWaterSurface pool(0.0), lake(1.0);
+    const double poolDensity = 1000.0, lakeDensity = 1250.0, crateDensity = 500.0, height = 0.5;
+    w.buoyancy.addWaterBody(boxWater("pool", &pool, poolDensity, btVector3(-5, -3, -2), btVector3(-1, 0.5, 2)));
+    w.buoyancy.addWaterBody(boxWater("lake", &lake, lakeDensity, btVector3(1, -2, -2), btVector3(5, 1.5, 2)));
+    const std::size_t inPool = w.addCrate(crateDensity, -3, 0.5, 0);
+    const std::size_t inLake = w.addCrate(crateDensity, 3, 1.5, 0);
+    w.run(8.0);
+    const double poolCentre = 0.0 - crateDensity / poolDensity * height + height / 2;  // 0
+    const double lakeCentre = 1.0 - crateDensity / lakeDensity * height + height / 2;  // 1.05
+    CHECK(w.centreY(inPool) == Approx(poolCentre).margin(0.01));
+    CHECK(w.centreY(inLake) == Approx(lakeCentre).margin(0.01));
+    // The submerged volume is the crate's mass over its own water's density (within the volume of a 1 cm draft
+    // change, the waterplane being 1 m²: the position's tolerance).
+    const double mass = crateDensity * 0.5;
+    CHECK(w.actions[inPool]->getLastResult().submergedVolume == Approx(mass / poolDensity).margin(0.01));
+    CHECK(w.actions[inLake]->getLastResult().submergedVolume == Approx(mass / lakeDensity).margin(0.01));
+}
+
+TEST_CASE("water bodies: a body outside every region gets no buoyancy and no drag, and falls", "[bullet][waters]") {
+    WaterBodiesWorld w;
+    const btFlatWaterSurface pool(0.0);
+    w.buoyancy.addWaterBody(boxWater("pool", &pool, 1000.0, btVector3(-5, -3, -2), btVector3(-1, 0.5, 2)));
+    // Beside the pool, below its level: in unbounded water it would float up; here there is no water.
+    const double startY = -1.0;
+    const std::size_t crate = w.addCrate(500.0, 3, startY, 0);
+    const double seconds = 0.5;
+    w.run(seconds);
+    const btBuoyancyResult& r = w.actions[crate]->getLastResult();
+    CHECK(r.submergedVolume == 0.0);
+    CHECK(r.buoyancyForce.length() == 0);
+    CHECK(r.dragForce.length() == 0);
+    // Free fall y = y0 − ½ g t² (semi-implicit Euler at 240 Hz is off by ½ g t dt ≈ 1 cm).
+    CHECK(w.centreY(crate) == Approx(startY - 0.5 * kGravity * seconds * seconds).margin(0.02));
+}
+
+TEST_CASE("water bodies: overlapping or malformed regions are refused with a message naming them", "[bullet][waters]") {
+    WaterBodiesWorld w;
+    const btFlatWaterSurface pool(0.0), lake(1.0);
+    REQUIRE(w.buoyancy.addWaterBody(boxWater("pool", &pool, 1000.0, btVector3(-5, -3, -2), btVector3(-1, 0, 2))) == 0);
+    try {
+        w.buoyancy.addWaterBody(boxWater("lake", &lake, 1000.0, btVector3(-2, -2, -2), btVector3(5, 1, 2)));
+        FAIL("overlapping regions accepted");
+    } catch (const std::invalid_argument& e) {
+        CHECK_THAT(e.what(), Contains("\"lake\"") && Contains("\"pool\"") && Contains("overlap"));
+    }
+    CHECK(w.buoyancy.getWaterBodies().size() == 1);
+    // Regions that only touch (a shared face at x = -1) are accepted.
+    CHECK(w.buoyancy.addWaterBody(boxWater("lake", &lake, 1000.0, btVector3(-1, -2, -2), btVector3(5, 1, 2))) == 1);
+    // min not below max, non-finite corners, bad density, null surface.
+    CHECK_THROWS_WITH(w.buoyancy.addWaterBody(boxWater("flat", &lake, 1000.0, btVector3(10, 0, 0), btVector3(12, 0, 1))),
+                      Contains("\"flat\"") && Contains("regionMax.y"));
+    const btScalar inf = std::numeric_limits<btScalar>::infinity();
+    CHECK_THROWS_WITH(w.buoyancy.addWaterBody(boxWater("far", &lake, 1000.0, btVector3(10, 0, 0), btVector3(inf, 1, 1))),
+                      Contains("regionMax.x") && Contains("finite"));
+    CHECK_THROWS_WITH(w.buoyancy.addWaterBody(boxWater("light", &lake, 0.0, btVector3(10, 0, 0), btVector3(11, 1, 1))),
+                      Contains("fluidDensity"));
+    CHECK_THROWS_WITH(w.buoyancy.addWaterBody(boxWater("none", nullptr, 1000.0, btVector3(10, 0, 0), btVector3(11, 1, 1))),
+                      Contains("surface"));
+    // An unbounded water and water bodies are one or the other.
+    CHECK_THROWS_WITH(w.buoyancy.setWater(&pool), Contains("water bodies"));
+    CHECK(w.buoyancy.getWater() == nullptr);
+    w.buoyancy.removeAllWaterBodies();
+    w.buoyancy.setWater(&pool);
+    CHECK_THROWS_WITH(w.buoyancy.addWaterBody(boxWater("lake", &lake, 1000.0, btVector3(1, -2, -2), btVector3(5, 1, 2))),
+                      Contains("unbounded water"));
+}
