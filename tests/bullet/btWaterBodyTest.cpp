@@ -138,3 +138,30 @@ TEST_CASE("water bodies: overlapping or malformed regions are refused with a mes
     CHECK_THROWS_WITH(w.buoyancy.addWaterBody(boxWater("lake", &lake, 1000.0, btVector3(1, -2, -2), btVector3(5, 1, 2))),
                       Contains("unbounded water"));
 }
+
+TEST_CASE("water bodies: a body straddling two waters takes each part of its surface from its own water",
+          "[bullet][waters]") {
+    // A lock: the upper chamber (x < 0) at 0.2 m of fresh water, the lower (x > 0) at −0.1 m of sea water. A 2 × 1 × 1 m
+    // box centred on the gate at x = 0. By hand (prisms): the bottom's left half pressed by ρ₁ g D₁, its right half by
+    // ρ₂ g D₂ (D the depth of the bottom, y = −0.5, in each water); the ends by ρ g D²/2 per metre of width.
+    WaterBodiesWorld w;
+    const double h1 = 0.2, rho1 = 1000.0, h2 = -0.1, rho2 = 1025.0;
+    const btFlatWaterSurface upper(h1), lower(h2);
+    w.buoyancy.addWaterBody(boxWater("upper", &upper, rho1, btVector3(-10, -5, -5), btVector3(0, 1, 5)));
+    w.buoyancy.addWaterBody(boxWater("lower", &lower, rho2, btVector3(0, -5, -5), btVector3(10, 1, 5)));
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(2.0, 1.0, 1.0));
+    btBuoyantBodySettings settings;
+    settings.density = 500;
+    w.bodies.push_back(std::make_unique<btBuoyantBody>(shape, settings, btTransform::getIdentity()));
+    w.world.addRigidBody(w.bodies.back()->getRigidBody());
+    w.actions.push_back(std::make_unique<btBuoyancyAction>(*w.bodies.back(), &w.buoyancy));
+    w.world.addAction(w.actions.back().get());
+    w.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));  // one substep (the box moves g dt² ≈ 0.2 mm)
+    const btBuoyancyResult& r = w.actions.back()->getLastResult();
+    const double D1 = h1 + 0.5, D2 = h2 + 0.5;
+    // Tolerance: the 0.2 mm the box fell in the substep changes the force by ρ g × 2 m² × 0.2 mm ≈ 4 N (4e-4 of it).
+    CHECK(double(r.submergedVolume) == Approx(D1 + D2).epsilon(1e-3));
+    CHECK(double(r.buoyancyForce.y()) == Approx(kGravity * (rho1 * D1 + rho2 * D2)).epsilon(1e-3));
+    CHECK(double(r.buoyancyForce.x()) == Approx(kGravity * (rho1 * D1 * D1 - rho2 * D2 * D2) / 2).margin(5.0));
+    CHECK(std::abs(double(r.buoyancyForce.z())) < 1.0);
+}

@@ -121,6 +121,48 @@ buoyancy::HydrostaticsResult btBuoyancyAction::submergedClosedForm(const Eigen::
     return h;
 }
 
+bool btBuoyancyAction::reachesOnlyWaterBody(std::size_t index, const Eigen::Vector3d& centre, double radius) const {
+    const std::vector<btWaterBody>& bodies = m_world->getWaterBodies();
+    const btWaterBody& body = bodies[index];
+    // Inside the box's faces but its top (the face whose outward normal is nearest the water frame's up): the water
+    // fills the box up to the surface, whatever is above it.
+    const Eigen::Vector3d up = m_world->getWaterFrame().up();
+    int topAxis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (std::abs(up[k]) > std::abs(up[topAxis])) topAxis = k;
+    for (int k = 0; k < 3; ++k) {
+        const bool skipMax = k == topAxis && up[k] > 0, skipMin = k == topAxis && up[k] < 0;
+        if (!skipMin && !(centre[k] - radius >= body.regionMin[k])) return false;
+        if (!skipMax && !(centre[k] + radius <= body.regionMax[k])) return false;
+    }
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        if (i != index && bodies[i].distanceTo(centre) <= radius) return false;
+    return true;
+}
+
+buoyancy::WaterRegion btBuoyancyAction::regionOf(const btWaterBody& body) const {
+    // The box's faces but its top, as half-spaces of the water frame: n · p ≤ n · (a point of the face), with the
+    // world's normal and point mapped into the frame.
+    const btWaterFrame& frame = m_world->getWaterFrame();
+    const Eigen::Vector3d up = frame.up();
+    int topAxis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (std::abs(up[k]) > std::abs(up[topAxis])) topAxis = k;
+    buoyancy::WaterRegion region;
+    region.water = body.surface;
+    region.fluidDensity = body.fluidDensity;
+    for (int k = 0; k < 3; ++k)
+        for (const double side : {-1.0, 1.0}) {
+            if (k == topAxis && side * up[k] > 0) continue;  // the top face
+            const Eigen::Vector3d normal = side * Eigen::Vector3d::Unit(k);
+            const Eigen::Vector3d onFace = side > 0 ? body.regionMax : body.regionMin;
+            const int i = region.planeCount++;
+            region.normal[i] = frame.toWaterVector(normal);
+            region.offset[i] = region.normal[i].dot(frame.toWaterPoint(onFace));
+        }
+    return region;
+}
+
 btTransform btBuoyancyAction::getMeshInComFrame() const {
     return m_owner ? m_owner->getMeshInComFrame() : m_meshInCom;
 }
@@ -360,11 +402,30 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // a deformable body's bounds follow its vertices
     const Eigen::Vector3d bc = pose * (m_deformable ? m_deformable->getBoundsCentre() : m_shape->getBoundsCentre());
     const double br = m_deformable ? m_deformable->getBoundsRadius() : m_shape->getBoundsRadius();
-    // Water bodies: the one whose region the bounding sphere reaches, nearest the centre of mass (design.md 2.9);
-    // none: no buoyancy and no drag, as above the water. One unbounded water: nothing to choose.
+    // Water bodies (design.md 2.9): the regions the bounding sphere reaches; none: no buoyancy and no drag, as above
+    // the water. The one nearest the centre of mass gives the drag's water and density. A sphere inside one region
+    // (within its sides and above its bottom) takes the single-water path below with that water; a body reaching out
+    // of its region or into several straddles: its pressure comes from regionHydrostatics, each part of its surface
+    // pressed by the water of the region it is in. One unbounded water: nothing to choose.
     int waterBody = -1;
+    bool straddling = false;
+    double lo = 0, hi = 0;
     if (bounded) {
-        waterBody = m_world->findWaterBody(frame.toWorldPoint(bc), br, toEigen(m_body->getCenterOfMassPosition()));
+        const Eigen::Vector3d centreWorld = frame.toWorldPoint(bc);
+        waterBody = m_world->findWaterBody(centreWorld, br, toEigen(m_body->getCenterOfMassPosition()));
+        if (waterBody >= 0) straddling = !reachesOnlyWaterBody(std::size_t(waterBody), centreWorld, br);
+        if (straddling) {
+            // The water's bounds over the footprint: the widest of the regions reached.
+            m_regionsReached.clear();
+            for (std::size_t i = 0; i < waterBodies.size(); ++i) {
+                if (!(waterBodies[i].distanceTo(centreWorld) <= br)) continue;
+                m_regionsReached.push_back(regionOf(waterBodies[i]));
+                double l = 0, u = 0;
+                waterBodies[i].surface->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, l, u);
+                lo = m_regionsReached.size() == 1 ? l : std::min(lo, l);
+                hi = m_regionsReached.size() == 1 ? u : std::max(hi, u);
+            }
+        }
         if (waterBody != m_activeWaterBody) {
             m_history.clear();  // its records belong to another water
             m_waterCache.reset();
@@ -380,8 +441,8 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     }
     m_activeWater = water;
     const double rho = m_activeDensity;
-    double lo = 0, hi = 0;
-    if (water) water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
+    if (water && !straddling) water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
+    if (straddling) m_history.clear();  // no temporal level of detail across regions (evaluated exactly)
     if (!water || bc.y() - br >= hi) {
         m_needsPrime = false;  // dry: the missed kick was zero
         m_history.clear();
@@ -409,7 +470,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     m_interval = interval;
     m_tolerance = btBuoyancyResolveReuseTolerance(m_settings);
     const bool temporalLod =
-        interval > 1 && m_settings.buoyancyEnabled && !m_deformable && !m_world->getDeviceBackend();
+        interval > 1 && !straddling && m_settings.buoyancyEnabled && !m_deformable && !m_world->getDeviceBackend();
     const bool evaluationSubstep = temporalLod && (substep + m_phase) % std::uint64_t(interval) == 0;
     btHydrostaticsSnapshot prediction;
     const bool predicted =
@@ -431,7 +492,8 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // method, or the samples) and the drag (its clusters) decide apart, so a small
     // body's drag probes do not put its hydrostatics on interpolated heights. Not needed by either: not built.
     const buoyancy::WaterPatch* dragPatch = nullptr;
-    if (!predicted && !flat && m_settings.waterPatchNodes > 0 && dynamic_cast<const btGerstnerWaterSurface*>(water)) {
+    if (!predicted && !flat && !straddling && m_settings.waterPatchNodes > 0 &&
+        dynamic_cast<const btGerstnerWaterSurface*>(water)) {
         const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength()));
         // The exact-mesh method counts its vertices, not its edge midpoints too: measured in the wave benchmark (the
         // 16-sided cylinder, 34 vertices and 96 edges, swell), exact heights took 13 µs and the patch 22 µs (its
@@ -460,7 +522,10 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     bool onDevice = false;  // h came from the world's device backend
     if (m_settings.buoyancyEnabled && !predicted) {
         try {  // never let an exception escape into Bullet's stepSimulation
-            if (flat && bc.y() + br <= flatH && !m_deformable) {
+            if (straddling) {
+                h = buoyancy::regionHydrostatics(m_shape->getMesh(), pose, m_regionsReached.data(),
+                                                 m_regionsReached.size(), time, g, com);
+            } else if (flat && bc.y() + br <= flatH && !m_deformable) {
                 h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (design.md 2.5)
             } else if (method == btBuoyancyMethod::ExactMesh) {
                 h = buoyancy::treeHydrostatics(m_shape->getMomentTree(), m_shape->getMesh(), pose, *water, time, rho, g,
