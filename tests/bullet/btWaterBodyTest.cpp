@@ -57,13 +57,7 @@ struct WaterBodiesWorld {
 
 btWaterBodyInfo boxWater(const char* name, const btWaterSurface* surface, double density, const btVector3& min,
                          const btVector3& max) {
-    btWaterBodyInfo info;
-    info.name = name;
-    info.surface = surface;
-    info.fluidDensity = density;
-    info.regionMin = min;
-    info.regionMax = max;
-    return info;
+    return btWaterBodyInfo{name, surface, density, min, max};  // the aggregate form docs/integration.md shows
 }
 
 }  // namespace
