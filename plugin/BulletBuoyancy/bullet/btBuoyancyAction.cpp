@@ -376,7 +376,8 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         m_pendingAngularSleep = btScalar(m_baseAngularSleep);
         return;
     }
-    const bool waves = bounded ? m_world->isAnyWaterBodyTimeVarying() : water->isTimeVarying();
+    // Water bodies: any wavy one may reach the body; narrowed to the waters it reaches once they are known (below).
+    bool waves = bounded ? m_world->isAnyWaterBodyTimeVarying() : water->isTimeVarying();
     if (!m_body->isActive() && !waves) {  // calm water: a sleeping body stays asleep
         m_needsPrime = true;
         m_history.clear();
@@ -440,6 +441,17 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         m_activeDensity = m_world->getFluidDensity();
     }
     m_activeWater = water;
+    if (bounded && waves) {
+        // Only the waters the body reaches keep it awake: a body asleep in a calm pool beside a wavy lake sleeps on.
+        waves = water && water->isTimeVarying();
+        if (straddling)
+            for (const buoyancy::WaterRegion& region : m_regionsReached) waves = waves || region.water->isTimeVarying();
+        if (!m_body->isActive() && !waves) {
+            m_needsPrime = true;
+            m_history.clear();
+            return;
+        }
+    }
     const double rho = m_activeDensity;
     if (water && !straddling) water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
     if (straddling) m_history.clear();  // no temporal level of detail across regions (evaluated exactly)
