@@ -21,25 +21,34 @@ namespace {
 
 constexpr double kGravity = 9.81;  ///< m/s²
 
-/// A y-up Bullet world without an unbounded water, and crates (1 × 0.5 × 1 m boxes) with their actions.
+/// `world` with its gravity set to `gravity` (so the buoyancy context's water frame follows it).
+btDynamicsWorld* withGravity(btDynamicsWorld* world, const btVector3& gravity) {
+    world->setGravity(gravity);
+    return world;
+}
+
+/// A Bullet world (y-up unless another gravity is given) without an unbounded water, and bodies with their actions.
 struct WaterBodiesWorld {
     btDefaultCollisionConfiguration config;
     btCollisionDispatcher dispatcher{&config};
     btDbvtBroadphase broadphase;
     btSequentialImpulseConstraintSolver solver;
     btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
-    btBuoyancyWorld buoyancy{&world, nullptr};
+    btBuoyancyWorld buoyancy;
     std::vector<std::unique_ptr<btBuoyantBody>> bodies;
     std::vector<std::unique_ptr<btBuoyancyAction>> actions;
 
-    WaterBodiesWorld() { world.setGravity(btVector3(0, btScalar(-kGravity), 0)); }
+    explicit WaterBodiesWorld(const btVector3& gravity = btVector3(0, btScalar(-kGravity), 0))
+        : buoyancy(withGravity(&world, gravity), nullptr) {}
     ~WaterBodiesWorld() {
         for (auto& a : actions) world.removeAction(a.get());
         for (auto& b : bodies) world.removeRigidBody(b->getRigidBody());
     }
-    /// A 1 × 0.5 × 1 m crate of density `density`, kg/m³, centred at (x, y, z), m; returns its index.
-    std::size_t addCrate(double density, double x, double y, double z) {
-        auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(1.0, 0.5, 1.0));
+    /// A box of `size` (default a 1 × 0.5 × 1 m crate) and density `density`, kg/m³, centred at (x, y, z), m;
+    /// returns its index.
+    std::size_t addCrate(double density, double x, double y, double z,
+                         const Eigen::Vector3d& size = Eigen::Vector3d(1.0, 0.5, 1.0)) {
+        auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(size.x(), size.y(), size.z()));
         btBuoyantBodySettings settings;
         settings.density = density;
         const btTransform pose(btQuaternion::getIdentity(), btVector3(btScalar(x), btScalar(y), btScalar(z)));
@@ -53,6 +62,7 @@ struct WaterBodiesWorld {
         for (int i = 0; i < int(seconds * 60 + 0.5); ++i) world.stepSimulation(btScalar(1.0 / 60), 4, btScalar(1.0 / 240));
     }
     double centreY(std::size_t i) const { return double(bodies[i]->getRigidBody()->getCenterOfMassPosition().y()); }
+    double centreZ(std::size_t i) const { return double(bodies[i]->getRigidBody()->getCenterOfMassPosition().z()); }
 };
 
 btWaterBodyInfo boxWater(const char* name, const btWaterSurface* surface, double density, const btVector3& min,
@@ -150,6 +160,7 @@ TEST_CASE("water bodies: a body straddling two waters takes each part of its sur
     w.world.addRigidBody(w.bodies.back()->getRigidBody());
     w.actions.push_back(std::make_unique<btBuoyancyAction>(*w.bodies.back(), &w.buoyancy));
     w.world.addAction(w.actions.back().get());
+    CHECK_FALSE(w.buoyancy.getWaterBodies().empty());
     w.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));  // one substep (the box moves g dt² ≈ 0.2 mm)
     const btBuoyancyResult& r = w.actions.back()->getLastResult();
     const double D1 = h1 + 0.5, D2 = h2 + 0.5;
@@ -158,4 +169,34 @@ TEST_CASE("water bodies: a body straddling two waters takes each part of its sur
     CHECK(double(r.buoyancyForce.y()) == Approx(kGravity * (rho1 * D1 + rho2 * D2)).epsilon(1e-3));
     CHECK(double(r.buoyancyForce.x()) == Approx(kGravity * (rho1 * D1 * D1 - rho2 * D2 * D2) / 2).margin(5.0));
     CHECK(std::abs(double(r.buoyancyForce.z())) < 1.0);
+}
+
+TEST_CASE("water bodies in a Z-up world: heights along +z, regions in world coordinates", "[bullet][waters]") {
+    // Gravity −z: the water frame's up is +z and each surface's height is measured along it. The boxes are the world's.
+    WaterBodiesWorld w(btVector3(0, 0, btScalar(-kGravity)));
+    const btFlatWaterSurface pool(0.0), lake(1.0);
+    w.buoyancy.addWaterBody(boxWater("pool", &pool, 1000.0, btVector3(-5, -2, -3), btVector3(-1, 2, 0.5)));
+    w.buoyancy.addWaterBody(boxWater("lake", &lake, 1000.0, btVector3(1, -2, -2), btVector3(5, 2, 1.5)));
+    const Eigen::Vector3d crate(1.0, 1.0, 0.5);  // 0.5 m tall along z
+    const std::size_t inPool = w.addCrate(500.0, -3, 0, 0.5, crate);
+    const std::size_t inLake = w.addCrate(500.0, 3, 0, 1.5, crate);
+    w.run(8.0);
+    // Archimedes along z: draft 500/1000 · 0.5, centre at level − draft + 0.25.
+    CHECK(w.centreZ(inPool) == Approx(0.0 - 0.25 + 0.25).margin(0.01));
+    CHECK(w.centreZ(inLake) == Approx(1.0 - 0.25 + 0.25).margin(0.01));
+
+    // A 2 × 1 × 1 m box (1 m tall along z) across x = 0 between two more waters, as in the Y-up lock above.
+    WaterBodiesWorld lock(btVector3(0, 0, btScalar(-kGravity)));
+    const double h1 = 0.2, h2 = -0.1;
+    const btFlatWaterSurface upper(h1), lower(h2);
+    lock.buoyancy.addWaterBody(boxWater("upper", &upper, 1000.0, btVector3(-10, -5, -5), btVector3(0, 5, 1)));
+    lock.buoyancy.addWaterBody(boxWater("lower", &lower, 1000.0, btVector3(0, -5, -5), btVector3(10, 5, 1)));
+    const std::size_t box = lock.addCrate(500.0, 0, 0, 0, Eigen::Vector3d(2.0, 1.0, 1.0));
+    lock.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));
+    const btBuoyancyResult& r = lock.actions[box]->getLastResult();
+    const double D1 = h1 + 0.5, D2 = h2 + 0.5;
+    CHECK(double(r.submergedVolume) == Approx(D1 + D2).epsilon(1e-3));
+    CHECK(double(r.buoyancyForce.z()) == Approx(kGravity * 1000.0 * (D1 + D2)).epsilon(1e-3));
+    CHECK(double(r.buoyancyForce.x()) == Approx(kGravity * 1000.0 * (D1 * D1 - D2 * D2) / 2).margin(5.0));
+    CHECK(std::abs(double(r.buoyancyForce.y())) < 1.0);
 }
