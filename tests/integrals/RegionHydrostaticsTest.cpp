@@ -68,7 +68,7 @@ TEST_CASE("regionHydrostatics: a box across two flat waters of different levels,
     CHECK(h.waterline_area == Approx(2.0).epsilon(1e-12));
 }
 
-TEST_CASE("regionHydrostatics: a body inside one region matches clippedHydrostatics; outside every region it is dry",
+TEST_CASE("regionHydrostatics: a body inside one region matches clippedHydrostatics, and outside every region it is dry",
           "[integrals][waters]") {
     const btFlatWaterSurface water(0.1);
     const buoyancy::WaterRegion inside = openTopBox(water, 1000.0, -10, 10, -5, -10, 10);
