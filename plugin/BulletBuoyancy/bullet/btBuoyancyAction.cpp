@@ -414,7 +414,8 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     if (bounded) {
         const Eigen::Vector3d centreWorld = frame.toWorldPoint(bc);
         waterBody = m_world->findWaterBody(centreWorld, br, toEigen(m_body->getCenterOfMassPosition()));
-        if (waterBody >= 0) straddling = !reachesOnlyWaterBody(std::size_t(waterBody), centreWorld, br);
+        // (A deformable body's cut would need its deformed mesh: it takes the nearest region's water whole.)
+        if (waterBody >= 0 && !m_deformable) straddling = !reachesOnlyWaterBody(std::size_t(waterBody), centreWorld, br);
         if (straddling) {
             // The water's bounds over the footprint: the widest of the regions reached.
             m_regionsReached.clear();
