@@ -200,3 +200,40 @@ TEST_CASE("water bodies in a Z-up world: heights along +z, regions in world coor
     CHECK(double(r.buoyancyForce.x()) == Approx(kGravity * 1000.0 * (D1 * D1 - D2 * D2) / 2).margin(5.0));
     CHECK(std::abs(double(r.buoyancyForce.y())) < 1.0);
 }
+
+TEST_CASE("water bodies: straddling two equal waters is the one water; half over the edge is half the buoyancy",
+          "[bullet][waters]") {
+    // Two regions side by side holding the same water (level 0.2 m, 1000 kg/m³): a body across them must get what one
+    // unbounded water gives, pressure and drag (each drag cluster wet in the region its centre is in). And a body half
+    // out of its region (over the pool's edge, no water beyond) gets the pressure of its half inside: ρ g × 1 m² × D.
+    const double level = 0.2, depth = level + 0.5;
+    const btFlatWaterSurface water(level);
+    auto boxAcross = [](WaterBodiesWorld& w) {
+        const std::size_t i = w.addCrate(500.0, 0, 0, 0, Eigen::Vector3d(2.0, 1.0, 1.0));
+        w.bodies[i]->getRigidBody()->setLinearVelocity(btVector3(0.3f, -0.2f, 0.7f));
+        w.bodies[i]->getRigidBody()->setAngularVelocity(btVector3(0.1f, 0.4f, -0.2f));
+        w.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));
+        return w.actions[i]->getLastResult();
+    };
+    WaterBodiesWorld unbounded;
+    unbounded.buoyancy.setWater(&water);
+    const btBuoyancyResult one = boxAcross(unbounded);
+    WaterBodiesWorld split;
+    split.buoyancy.addWaterBody(boxWater("left", &water, 1000.0, btVector3(-10, -5, -5), btVector3(0, 1, 5)));
+    split.buoyancy.addWaterBody(boxWater("right", &water, 1000.0, btVector3(0, -5, -5), btVector3(10, 1, 5)));
+    const btBuoyancyResult two = boxAcross(split);
+    REQUIRE(one.dragForce.length() > 1.0);  // the drag is exercised
+    CHECK((two.buoyancyForce - one.buoyancyForce).length() <= 1e-5 * one.buoyancyForce.length());
+    CHECK((two.buoyancyTorque - one.buoyancyTorque).length() <= 1e-5 * one.buoyancyForce.length());
+    CHECK((two.dragForce - one.dragForce).length() <= 1e-5 * one.dragForce.length());
+    CHECK((two.dragTorque - one.dragTorque).length() <= 1e-5 * one.dragForce.length());
+
+    WaterBodiesWorld edge;
+    edge.buoyancy.addWaterBody(boxWater("pool", &water, 1000.0, btVector3(-10, -5, -5), btVector3(0, 1, 5)));
+    const std::size_t i = edge.addCrate(500.0, 0, 0, 0, Eigen::Vector3d(2.0, 1.0, 1.0));
+    edge.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));
+    const btBuoyancyResult& half = edge.actions[i]->getLastResult();
+    // The 0.2 mm fall of the substep: ρ g × 1 m² × 0.2 mm ≈ 2 N of 6,900 N.
+    CHECK(double(half.buoyancyForce.y()) == Approx(1000.0 * kGravity * 1.0 * depth).epsilon(1e-3));
+    CHECK(double(half.submergedVolume) == Approx(1.0 * depth).epsilon(1e-3));
+}

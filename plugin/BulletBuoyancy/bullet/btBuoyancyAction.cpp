@@ -100,6 +100,7 @@ void btBuoyancyAction::selectDragClusters() {
     m_drag = sharedDragClusters(m_shape, m_settings.dragClusters, m_settings.waterVelocityProbes);
     const std::size_t k = m_drag->size();
     for (auto* v : {&m_dx, &m_dy, &m_dz, &m_dax, &m_day, &m_daz, &m_dhalf, &m_dh, &m_ux, &m_uy, &m_uz}) v->assign(k, 0.0);
+    m_dassigned.assign(k, 0);
     const std::size_t p = m_drag->probeX.size();
     for (auto* v : {&m_px, &m_py, &m_pz, &m_pux, &m_puy, &m_puz}) v->assign(p, 0.0);
     m_dragCache.reset();
@@ -198,7 +199,9 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     }
     double flatH = 0;
     const bool flat = water.isFlat(time, flatH);
-    if (reuseWater) {
+    if (m_straddling) {
+        // Each cluster takes the water of the region it is in: queried per region below.
+    } else if (reuseWater) {
         // Temporal level of detail: the clusters' water heights and velocities of the last exact evaluation
         // (at most hydrostaticsInterval − 1 substeps old) are kept in m_dh and m_ux/m_uy/m_uz.
     } else if (flat)
@@ -207,7 +210,7 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
         patch->heights(m_dx.data(), m_dz.data(), n, m_dh.data());
     else
         water.heightsCached(m_dx.data(), m_dz.data(), n, time, m_dh.data(), m_dragCache);
-    if (reuseWater) {
+    if (reuseWater || m_straddling) {
     } else if (flat || m_drag->probeX.size() >= n) {
         water.velocitiesCached(m_dx.data(), m_dy.data(), m_dz.data(), n, time, m_ux.data(), m_uy.data(), m_uz.data(),
                                m_dragCache);
@@ -231,42 +234,70 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     }
     // the per-sample drag lives in geometry/SampleFormulas.h, shared with the OpenCL kernels;
     // the CPU sums it several clusters per instruction (integrals/DragKernel.h, the same formulas lane by lane).
-    buoyancy::DragMotion motion;
-    motion.kd = 0.5 * density * m_settings.dragCoefficient;
-    motion.kf = 0.5 * density * m_settings.skinFriction;
-    motion.kl = density * m_settings.linearDamping;
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) motion.R[3 * i + j] = R(i, j);
-        motion.com[i] = com[i];
-        motion.v[i] = v[i];
-        motion.w[i] = w[i];
+    // A body straddling water bodies (design.md 2.9): one pass per region reached, with its water and density; each
+    // cluster is wet only in the first region whose box holds its centre (dry in the others).
+    const std::size_t passes = m_straddling ? m_regionsReached.size() : 1;
+    if (m_straddling) std::fill(m_dassigned.begin(), m_dassigned.end(), std::uint8_t(0));
+    double sum[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    for (std::size_t pass = 0; pass < passes; ++pass) {
+        double rho = density;
+        if (m_straddling) {
+            const buoyancy::WaterRegion& region = m_regionsReached[pass];
+            rho = region.fluidDensity;
+            region.water->heights(m_dx.data(), m_dz.data(), n, time, m_dh.data());
+            region.water->velocities(m_dx.data(), m_dy.data(), m_dz.data(), n, time, m_ux.data(), m_uy.data(), m_uz.data());
+            bool anyInside = false;
+            for (std::size_t i = 0; i < n; ++i) {
+                const Eigen::Vector3d p(m_dx[i], m_dy[i], m_dz[i]);
+                bool inside = !m_dassigned[i];
+                for (int k = 0; k < region.planeCount && inside; ++k) inside = region.normal[k].dot(p) <= region.offset[k];
+                if (inside) {
+                    m_dassigned[i] = 1;
+                    anyInside = true;
+                } else {
+                    m_dh[i] = m_dy[i] - 2.0 * m_dhalf[i] - 1.0;  // below the cluster's lowest point: dry in this pass
+                }
+            }
+            if (!anyInside) continue;
+        }
+        buoyancy::DragMotion motion;
+        motion.kd = 0.5 * rho * m_settings.dragCoefficient;
+        motion.kf = 0.5 * rho * m_settings.skinFriction;
+        motion.kl = rho * m_settings.linearDamping;
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) motion.R[3 * i + j] = R(i, j);
+            motion.com[i] = com[i];
+            motion.v[i] = v[i];
+            motion.w[i] = w[i];
+        }
+        buoyancy::DragClusterBatch batch;
+        batch.n = n;
+        batch.x = m_dx.data();
+        batch.y = m_dy.data();
+        batch.z = m_dz.data();
+        batch.ax = m_dax.data();
+        batch.ay = m_day.data();
+        batch.az = m_daz.data();
+        batch.area = c.area.data();
+        batch.cxx = c.cxx.data();
+        batch.cxy = c.cxy.data();
+        batch.cxz = c.cxz.data();
+        batch.cyy = c.cyy.data();
+        batch.cyz = c.cyz.data();
+        batch.czz = c.czz.data();
+        batch.halfHeight = m_dhalf.data();
+        batch.waterHeight = m_dh.data();
+        batch.ux = m_ux.data();
+        batch.uy = m_uy.data();
+        batch.uz = m_uz.data();
+        double part[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        buoyancy::accumulateClusterDrag(batch, motion, part);
+        for (int k = 0; k < BB_DRAG_TERMS; ++k) sum[k] += part[k];
     }
-    buoyancy::DragClusterBatch batch;
-    batch.n = n;
-    batch.x = m_dx.data();
-    batch.y = m_dy.data();
-    batch.z = m_dz.data();
-    batch.ax = m_dax.data();
-    batch.ay = m_day.data();
-    batch.az = m_daz.data();
-    batch.area = c.area.data();
-    batch.cxx = c.cxx.data();
-    batch.cxy = c.cxy.data();
-    batch.cxz = c.cxz.data();
-    batch.cyy = c.cyy.data();
-    batch.cyz = c.cyz.data();
-    batch.czz = c.czz.data();
-    batch.halfHeight = m_dhalf.data();
-    batch.waterHeight = m_dh.data();
-    batch.ux = m_ux.data();
-    batch.uy = m_uy.data();
-    batch.uz = m_uz.data();
-    double part[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-    buoyancy::accumulateClusterDrag(batch, motion, part);
-    force = Eigen::Vector3d(part[0], part[1], part[2]);
-    torque = Eigen::Vector3d(part[3], part[4], part[5]);
-    const Eigen::Vector3d uSum(part[6], part[7], part[8]);
-    const double areaSum = part[9];
+    force = Eigen::Vector3d(sum[0], sum[1], sum[2]);
+    torque = Eigen::Vector3d(sum[3], sum[4], sum[5]);
+    const Eigen::Vector3d uSum(sum[6], sum[7], sum[8]);
+    const double areaSum = sum[9];
     meanWaterVelocity = areaSum > 0 ? Eigen::Vector3d(uSum / areaSum) : Eigen::Vector3d::Zero();
 }
 
@@ -416,6 +447,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         waterBody = m_world->findWaterBody(centreWorld, br, toEigen(m_body->getCenterOfMassPosition()));
         // (A deformable body's cut would need its deformed mesh: it takes the nearest region's water whole.)
         if (waterBody >= 0 && !m_deformable) straddling = !reachesOnlyWaterBody(std::size_t(waterBody), centreWorld, br);
+        m_straddling = straddling;
         if (straddling) {
             // The water's bounds over the footprint: the widest of the regions reached.
             m_regionsReached.clear();
@@ -440,6 +472,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         m_activeDensity = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].fluidDensity : m_world->getFluidDensity();
     } else {
         m_activeDensity = m_world->getFluidDensity();
+        m_straddling = false;
     }
     m_activeWater = water;
     if (bounded && waves) {

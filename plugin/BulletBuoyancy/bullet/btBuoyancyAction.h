@@ -188,6 +188,10 @@ private:
     int m_activeWaterBody = -1;                    ///< index in btBuoyancyWorld::getWaterBodies(), −1: none
     /// The regions a straddling body reaches this substep (capacity kept: no allocation once grown).
     std::vector<buoyancy::WaterRegion> m_regionsReached;
+    /// The body straddles water bodies this substep: pressure from regionHydrostatics, drag per region.
+    bool m_straddling = false;
+    /// Per drag cluster: already wet in an earlier region's pass of this substep (straddling drag).
+    std::vector<std::uint8_t> m_dassigned;
     /// True when the sphere (`centre`, world, m; `radius`, m) is inside water body `index`'s box but its top and
     /// reaches no other water body's box.
     bool reachesOnlyWaterBody(std::size_t index, const Eigen::Vector3d& centre, double radius) const;
