@@ -393,6 +393,75 @@ void readWater(const Reader& r, const json& w, Scene& s, const std::string& dire
     }
 }
 
+/// "[x, y, z]" of a region corner, m.
+std::string cornerText(const Eigen::Vector3d& v) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "[%.6g, %.6g, %.6g]", v.x(), v.y(), v.z());
+    return buf;
+}
+
+/// The "waters" array: each entry a water object (the keys of "water" but "frame") with a required
+/// "region": {"box": {"min": [x, y, z], "max": [x, y, z]}}. Messages name the entry's keys ("waters[1].height").
+/// Regions must not overlap (touching is allowed): the message names both entries.
+void readWaters(const Reader& r, const json& j, Scene& s, const std::string& directory) {
+    if (!j.is_array()) r.fail("waters", "expected an array of water objects");
+    if (j.empty()) r.fail("waters", "empty: give at least one water object (or use \"water\")");
+    for (std::size_t i = 0; i < j.size(); ++i) {
+        const std::string key = "waters[" + std::to_string(i) + "]";
+        const json& w = j[i];
+        r.requireObject(w, key);
+        if (w.contains("frame"))
+            r.fail(key + ".frame", "not allowed in a \"waters\" entry: the scene has one water frame, the default "
+                                   "of its gravity");
+        if (!w.contains("region")) r.fail(key + ".region", "missing ({\"box\": {\"min\": [x, y, z], \"max\": [x, y, z]}})");
+        // The entry read as a "water" object, its keys named from the entry ("water.height" → "waters[i].height").
+        const Reader entry([&r, key](const std::string& k, const std::string& what) {
+            const std::string prefix = "water";
+            const std::string local = k.compare(0, prefix.size(), prefix) == 0 ? key + k.substr(prefix.size()) : k;
+            r.fail(local, what);
+        });
+        json surface = w;
+        surface.erase("region");
+        Scene one;
+        one.gravity = s.gravity;
+        readWater(entry, surface, one, directory, [](const std::string& type) -> std::string {
+            if (type == "interactive") return "interactive water is not supported in \"waters\" (use \"water\")";
+            return "";
+        });
+        SceneWaterBody body;
+        body.water = one.water;
+        body.height = one.waterHeight;
+        body.density = one.waterDensity;
+        const json& region = w["region"];
+        r.requireObject(region, key + ".region");
+        r.allowKeys(region, key + ".region", {"box"});
+        if (!region.contains("box")) r.fail(key + ".region.box", "missing ({\"min\": [x, y, z], \"max\": [x, y, z]})");
+        const json& box = region["box"];
+        r.requireObject(box, key + ".region.box");
+        r.allowKeys(box, key + ".region.box", {"min", "max"});
+        if (!box.contains("min")) r.fail(key + ".region.box.min", "missing (the lower corner [x, y, z], m)");
+        if (!box.contains("max")) r.fail(key + ".region.box.max", "missing (the upper corner [x, y, z], m)");
+        body.regionMin = r.vec3(box["min"], key + ".region.box.min", -kBig, kBig);
+        body.regionMax = r.vec3(box["max"], key + ".region.box.max", -kBig, kBig);
+        static const char* const axes[3] = {"x", "y", "z"};
+        for (int k = 0; k < 3; ++k)
+            if (!(body.regionMin[k] < body.regionMax[k]))
+                r.fail(key + ".region.box.max", "must be greater than min on every axis (" + std::string(axes[k]) +
+                                                    ": max " + cornerText(body.regionMax) + " <= min " +
+                                                    cornerText(body.regionMin) + ")");
+        for (std::size_t o = 0; o < s.waters.size(); ++o) {
+            const SceneWaterBody& other = s.waters[o];
+            if ((body.regionMin.array() < other.regionMax.array()).all() &&
+                (other.regionMin.array() < body.regionMax.array()).all())
+                r.fail(key + ".region", "the box " + cornerText(body.regionMin) + " to " + cornerText(body.regionMax) +
+                                            " overlaps waters[" + std::to_string(o) + "].region " +
+                                            cornerText(other.regionMin) + " to " + cornerText(other.regionMax) +
+                                            ": the regions of water bodies must not overlap");
+        }
+        s.waters.push_back(std::move(body));
+    }
+}
+
 }  // namespace
 
 Scene parseScene(const std::string& text, const std::string& sourceName, const std::string& directory) {
@@ -404,8 +473,8 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
         throw UsageError(sourceName + ": invalid JSON: " + e.what());
     }
     r.requireObject(j, "");
-    r.allowKeys(j, "", {"gravity", "dt", "substeps_per_frame", "duration", "output_interval", "water", "bodies",
-                        "ground", "camera"});
+    r.allowKeys(j, "", {"gravity", "dt", "substeps_per_frame", "duration", "output_interval", "water", "waters",
+                        "bodies", "ground", "camera"});
     Scene s;
     s.directory = directory;
     if (j.contains("gravity")) s.gravity = r.vec3(j["gravity"], "gravity", -1e3, 1e3);  // any direction, or zero
@@ -413,8 +482,12 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
     if (j.contains("substeps_per_frame")) s.substepsPerFrame = r.integer(j["substeps_per_frame"], "substeps_per_frame", 1, 1000);
     if (j.contains("duration")) s.duration = r.number(j["duration"], "duration", 0.0, 1e6);
     if (j.contains("output_interval")) s.outputInterval = r.number(j["output_interval"], "output_interval", 0.0, 1e6, true);
+    if (j.contains("water") && j.contains("waters"))
+        r.fail("water, waters", "give either \"water\" (one unbounded water) or \"waters\" (bounded water bodies), "
+                                "not both");
     if (j.contains("water")) readWater(r, j["water"], s, directory);
     else resolveWaterFrame(r, s);  // the default frame of the gravity
+    if (j.contains("waters")) readWaters(r, j["waters"], s, directory);
     if (j.contains("ground")) {
         const json& g = j["ground"];
         r.requireObject(g, "ground");

@@ -73,6 +73,15 @@ struct SceneWater {
     std::optional<Eigen::Vector3d> frameUp, frameX, frameOrigin;
 };
 
+/// One entry of the "waters" array: a bounded water body (docs/scene-format.md, btWaterBody.h).
+struct SceneWaterBody {
+    SceneWater water;                 ///< surface type and parameters, as the "water" object (no "frame")
+    double height = 0.0;              ///< level, m
+    double density = 1000.0;          ///< ρ_w, kg/m³
+    Eigen::Vector3d regionMin = Eigen::Vector3d::Zero(); ///< "region.box.min": lower corner, world, m
+    Eigen::Vector3d regionMax = Eigen::Vector3d::Zero(); ///< "region.box.max": upper corner, world, m (> min)
+};
+
 /// The "camera" block: the view of `buoyancy run --png` and of the scene browser. Fields left out are
 /// chosen to frame the bodies at t = 0.
 struct SceneCamera {
@@ -95,6 +104,9 @@ struct Scene {
     double waterHeight = 0.0;         ///< flat water level, m
     double waterDensity = 1000.0;     ///< kg/m³
     SceneWater water;                 ///< surface type and parameters
+    /// "waters": bounded water bodies whose regions do not overlap (checked by the loader), instead of the single
+    /// unbounded "water" (empty: that one). Given with "water" is an error.
+    std::vector<SceneWaterBody> waters;
     std::optional<double> groundHeight; ///< static floor y = h
     /// Unit normal of the floor (world); the floor is the plane through the point at height h along the water
     /// frame's up (origin + h·up) with this normal (a sloped beach when not up). Key "ground.normal", default: up.

@@ -4,6 +4,7 @@
 
 #include "scene/SceneFile.h"
 
+#include <cstddef>
 #include <memory>
 
 class btWaterSurface;
@@ -20,5 +21,9 @@ struct SceneWaterSurface {
 
 /// @throws UsageError naming the "water" key for parameters the surface rejects
 SceneWaterSurface makeSceneWater(const Scene& scene);
+
+/// The surface of the scene's water body `index` (Scene::waters; interactive water is refused by the loader).
+/// @throws UsageError naming "waters[index]" for parameters the surface rejects
+std::unique_ptr<btWaterSurface> makeSceneWaterBody(const Scene& scene, std::size_t index);
 
 }  // namespace buoyancy::cli

@@ -99,7 +99,10 @@ std::unique_ptr<SceneWorld> buildSceneWorld(const Scene& scene, double importTim
     SceneWorld& w = *out;
     w.world.setGravity(btVector3(btScalar(scene.gravity.x()), btScalar(scene.gravity.y()), btScalar(scene.gravity.z())));
     btGImpactCollisionAlgorithm::registerAlgorithm(&w.dispatcher);
-    SceneWaterSurface sceneWater = makeSceneWater(scene);
+    // One unbounded water ("water"), or bounded water bodies ("waters") in a world without the unbounded one.
+    SceneWaterSurface sceneWater;
+    if (scene.waters.empty()) sceneWater = makeSceneWater(scene);
+    for (std::size_t i = 0; i < scene.waters.size(); ++i) w.waterBodies.push_back(makeSceneWaterBody(scene, i));
     w.water = std::move(sceneWater.surface);
     w.interactiveWater = sceneWater.interactive;
     // The world's gravity; the water frame as the loader resolved it (checked against the gravity there).
@@ -107,6 +110,20 @@ std::unique_ptr<SceneWorld> buildSceneWorld(const Scene& scene, double importTim
         w.buoyancy = std::make_unique<btBuoyancyWorld>(&w.world, w.water.get(), scene.waterFrame, scene.waterDensity);
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("water.frame: ") + e.what());
+    }
+    for (std::size_t i = 0; i < scene.waters.size(); ++i) {
+        const SceneWaterBody& body = scene.waters[i];
+        btWaterBodyInfo info;
+        info.name = "waters[" + std::to_string(i) + "]";
+        info.surface = w.waterBodies[i].get();
+        info.fluidDensity = body.density;
+        info.regionMin = btVector3(btScalar(body.regionMin.x()), btScalar(body.regionMin.y()), btScalar(body.regionMin.z()));
+        info.regionMax = btVector3(btScalar(body.regionMax.x()), btScalar(body.regionMax.y()), btScalar(body.regionMax.z()));
+        try {
+            w.buoyancy->addWaterBody(info);
+        } catch (const std::invalid_argument& e) {  // the loader checked the regions: a float rounding can remain
+            throw UsageError("waters[" + std::to_string(i) + "]: " + e.what());
+        }
     }
     if (scene.groundHeight) {
         // The plane through origin + h·up (the water frame's) with the scene's normal (up unless "ground.normal"

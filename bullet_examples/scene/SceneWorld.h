@@ -32,6 +32,8 @@ struct SceneWorld {
     std::unique_ptr<btWaterSurface> water;
     btInteractiveWaterSurface* interactiveWater = nullptr;    ///< points into `water` for "interactive" water
     std::unique_ptr<btInteractiveWaterCoupler> waterCoupler;  ///< interactive water only, the last action
+    /// The surfaces of the scene's "waters" (parallel to Scene::waters; empty with the single "water").
+    std::vector<std::unique_ptr<btWaterSurface>> waterBodies;
     std::unique_ptr<btBuoyancyWorld> buoyancy;
     std::vector<std::unique_ptr<btBuoyantBody>> bodies;
     std::vector<std::unique_ptr<btBuoyancyAction>> actions;  ///< null for fixed bodies

@@ -107,6 +107,27 @@ TEST_CASE("scene plank.json floats at its draft", "[bullet][scenes]") {
     CHECK(closestAxisTilt(p.back()) < 1.0);
 }
 
+TEST_CASE("scene pool_and_lake.json: each crate floats in its own water body, the stone between them falls", "[bullet][scenes]") {
+    const auto rows = runScene("pool_and_lake.json");
+    // Boxes 1 × 0.5 × 1 of density 500: draft ρ_b/ρ_w · 0.5, centre at level − draft + 0.25. The pool: level 0,
+    // 1000 kg/m³ (centre at 0); the lake: level 1.5, 1025 kg/m³.
+    const auto& pool = rows.at("pool_crate");
+    const auto& lake = rows.at("lake_crate");
+    const double poolCentre = 0.0 - 500.0 / 1000.0 * 0.5 + 0.25, lakeCentre = 1.5 - 500.0 / 1025.0 * 0.5 + 0.25;
+    const auto [poolY, poolRange] = meanRange(pool, 8, pool.back().t - 2.0);
+    const auto [lakeY, lakeRange] = meanRange(lake, 8, lake.back().t - 2.0);
+    std::printf("pool_and_lake: pool crate %.5f (theory %.5f), lake crate %.5f (theory %.5f)\n", poolY, poolCentre, lakeY,
+                lakeCentre);
+    CHECK(poolY == Approx(poolCentre).margin(0.01));
+    CHECK(lakeY == Approx(lakeCentre).margin(0.01));
+    CHECK(pool.back().v[16] == Approx(250.0 / 1000.0).margin(0.01));  // V_sub = m / ρ_w, m³ (1 m² waterplane: 1 cm)
+    CHECK(lake.back().v[16] == Approx(250.0 / 1025.0).margin(0.01));
+    // Between the regions there is no water: the stone (radius 0.2 m) falls to the ground at -2, never wet.
+    const auto& stone = rows.at("stone");
+    CHECK(stone.back().v[8] == Approx(-2.0 + 0.2).margin(0.02));
+    for (const Row& r : stone) CHECK(r.v[16] == 0.0);
+}
+
 TEST_CASE("scene zup_plank.json: a Z-up world (gravity -z, water frame up +z) floats the plank in its waves", "[bullet][scenes]") {
     // The plank of plank.json, 0.4 m tall along z, in a 0.1 m, 12 m swell along x: its centre follows the swell along z
     // (mean 0 over whole periods: the Gerstner crest is sharper than the trough, so by a little) and stays at y = 0.

@@ -65,6 +65,7 @@ btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBu
     }
     m_ws.resize(m_shape->getSamples().size());
     selectDragClusters();
+    m_activeDensity = m_world->getFluidDensity();
     m_baseLinearSleep = double(m_body->getLinearSleepingThreshold());
     m_baseAngularSleep = double(m_body->getAngularSleepingThreshold());
     // Bodies take turns at their exact evaluations (temporal level of detail): staggered by registration order.
@@ -103,6 +104,7 @@ void btBuoyancyAction::selectDragClusters() {
     m_drag = sharedDragClusters(m_shape, m_settings.dragClusters, m_settings.waterVelocityProbes);
     const std::size_t k = m_drag->size();
     for (auto* v : {&m_dx, &m_dy, &m_dz, &m_dax, &m_day, &m_daz, &m_dhalf, &m_dh, &m_ux, &m_uy, &m_uz}) v->assign(k, 0.0);
+    m_dassigned.assign(k, 0);
     const std::size_t p = m_drag->probeX.size();
     for (auto* v : {&m_px, &m_py, &m_pz, &m_pux, &m_puy, &m_puz}) v->assign(p, 0.0);
     m_dragCache.reset();
@@ -124,6 +126,48 @@ buoyancy::HydrostaticsResult btBuoyancyAction::submergedClosedForm(const Eigen::
     return h;
 }
 
+bool btBuoyancyAction::reachesOnlyWaterBody(std::size_t index, const Eigen::Vector3d& centre, double radius) const {
+    const std::vector<btWaterBody>& bodies = m_world->getWaterBodies();
+    const btWaterBody& body = bodies[index];
+    // Inside the box's faces but its top (the face whose outward normal is nearest the water frame's up): the water
+    // fills the box up to the surface, whatever is above it.
+    const Eigen::Vector3d up = m_world->getWaterFrame().up();
+    int topAxis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (std::abs(up[k]) > std::abs(up[topAxis])) topAxis = k;
+    for (int k = 0; k < 3; ++k) {
+        const bool skipMax = k == topAxis && up[k] > 0, skipMin = k == topAxis && up[k] < 0;
+        if (!skipMin && !(centre[k] - radius >= body.regionMin[k])) return false;
+        if (!skipMax && !(centre[k] + radius <= body.regionMax[k])) return false;
+    }
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        if (i != index && bodies[i].distanceTo(centre) <= radius) return false;
+    return true;
+}
+
+buoyancy::WaterRegion btBuoyancyAction::regionOf(const btWaterBody& body) const {
+    // The box's faces but its top, as half-spaces of the water frame: n · p ≤ n · (a point of the face), with the
+    // world's normal and point mapped into the frame.
+    const btWaterFrame& frame = m_world->getWaterFrame();
+    const Eigen::Vector3d up = frame.up();
+    int topAxis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (std::abs(up[k]) > std::abs(up[topAxis])) topAxis = k;
+    buoyancy::WaterRegion region;
+    region.water = body.surface;
+    region.fluidDensity = body.fluidDensity;
+    for (int k = 0; k < 3; ++k)
+        for (const double side : {-1.0, 1.0}) {
+            if (k == topAxis && side * up[k] > 0) continue;  // the top face
+            const Eigen::Vector3d normal = side * Eigen::Vector3d::Unit(k);
+            const Eigen::Vector3d onFace = side > 0 ? body.regionMax : body.regionMin;
+            const int i = region.planeCount++;
+            region.normal[i] = frame.toWaterVector(normal);
+            region.offset[i] = region.normal[i].dot(frame.toWaterPoint(onFace));
+        }
+    return region;
+}
+
 btTransform btBuoyancyAction::getMeshInComFrame() const {
     return m_owner ? m_owner->getMeshInComFrame() : m_meshInCom;
 }
@@ -138,7 +182,7 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     // (design.md 2.5, drag level of detail; settings.dragClusters = 0 keeps every fine sample).
     const buoyancy::DragClusters& c = *m_drag;
     const std::size_t n = c.size();
-    const btWaterSurface& water = *m_world->getWater();
+    const btWaterSurface& water = *m_activeWater;
     const Eigen::Matrix3d R = pose.linear();
     const Eigen::Vector3d t = pose.translation();
     const double r10 = R(1, 0), r11 = R(1, 1), r12 = R(1, 2);
@@ -159,7 +203,9 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     }
     double flatH = 0;
     const bool flat = water.isFlat(time, flatH);
-    if (reuseWater) {
+    if (m_straddling) {
+        // Each cluster takes the water of the region it is in: queried per region below.
+    } else if (reuseWater) {
         // Temporal level of detail: the clusters' water heights and velocities of the last exact evaluation
         // (at most hydrostaticsInterval − 1 substeps old) are kept in m_dh and m_ux/m_uy/m_uz.
     } else if (flat)
@@ -168,7 +214,7 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
         patch->heights(m_dx.data(), m_dz.data(), n, m_dh.data());
     else
         water.heightsCached(m_dx.data(), m_dz.data(), n, time, m_dh.data(), m_dragCache);
-    if (reuseWater) {
+    if (reuseWater || m_straddling) {
     } else if (flat || m_drag->probeX.size() >= n) {
         water.velocitiesCached(m_dx.data(), m_dy.data(), m_dz.data(), n, time, m_ux.data(), m_uy.data(), m_uz.data(),
                                m_dragCache);
@@ -192,42 +238,70 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     }
     // the per-sample drag lives in geometry/SampleFormulas.h, shared with the OpenCL kernels;
     // the CPU sums it several clusters per instruction (integrals/DragKernel.h, the same formulas lane by lane).
-    buoyancy::DragMotion motion;
-    motion.kd = 0.5 * density * m_settings.dragCoefficient;
-    motion.kf = 0.5 * density * m_settings.skinFriction;
-    motion.kl = density * m_settings.linearDamping;
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) motion.R[3 * i + j] = R(i, j);
-        motion.com[i] = com[i];
-        motion.v[i] = v[i];
-        motion.w[i] = w[i];
+    // A body straddling water bodies (design.md 2.9): one pass per region reached, with its water and density; each
+    // cluster is wet only in the first region whose box holds its centre (dry in the others).
+    const std::size_t passes = m_straddling ? m_regionsReached.size() : 1;
+    if (m_straddling) std::fill(m_dassigned.begin(), m_dassigned.end(), std::uint8_t(0));
+    double sum[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    for (std::size_t pass = 0; pass < passes; ++pass) {
+        double rho = density;
+        if (m_straddling) {
+            const buoyancy::WaterRegion& region = m_regionsReached[pass];
+            rho = region.fluidDensity;
+            region.water->heights(m_dx.data(), m_dz.data(), n, time, m_dh.data());
+            region.water->velocities(m_dx.data(), m_dy.data(), m_dz.data(), n, time, m_ux.data(), m_uy.data(), m_uz.data());
+            bool anyInside = false;
+            for (std::size_t i = 0; i < n; ++i) {
+                const Eigen::Vector3d p(m_dx[i], m_dy[i], m_dz[i]);
+                bool inside = !m_dassigned[i];
+                for (int k = 0; k < region.planeCount && inside; ++k) inside = region.normal[k].dot(p) <= region.offset[k];
+                if (inside) {
+                    m_dassigned[i] = 1;
+                    anyInside = true;
+                } else {
+                    m_dh[i] = m_dy[i] - 2.0 * m_dhalf[i] - 1.0;  // below the cluster's lowest point: dry in this pass
+                }
+            }
+            if (!anyInside) continue;
+        }
+        buoyancy::DragMotion motion;
+        motion.kd = 0.5 * rho * m_settings.dragCoefficient;
+        motion.kf = 0.5 * rho * m_settings.skinFriction;
+        motion.kl = rho * m_settings.linearDamping;
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) motion.R[3 * i + j] = R(i, j);
+            motion.com[i] = com[i];
+            motion.v[i] = v[i];
+            motion.w[i] = w[i];
+        }
+        buoyancy::DragClusterBatch batch;
+        batch.n = n;
+        batch.x = m_dx.data();
+        batch.y = m_dy.data();
+        batch.z = m_dz.data();
+        batch.ax = m_dax.data();
+        batch.ay = m_day.data();
+        batch.az = m_daz.data();
+        batch.area = c.area.data();
+        batch.cxx = c.cxx.data();
+        batch.cxy = c.cxy.data();
+        batch.cxz = c.cxz.data();
+        batch.cyy = c.cyy.data();
+        batch.cyz = c.cyz.data();
+        batch.czz = c.czz.data();
+        batch.halfHeight = m_dhalf.data();
+        batch.waterHeight = m_dh.data();
+        batch.ux = m_ux.data();
+        batch.uy = m_uy.data();
+        batch.uz = m_uz.data();
+        double part[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        buoyancy::accumulateClusterDrag(batch, motion, part);
+        for (int k = 0; k < BB_DRAG_TERMS; ++k) sum[k] += part[k];
     }
-    buoyancy::DragClusterBatch batch;
-    batch.n = n;
-    batch.x = m_dx.data();
-    batch.y = m_dy.data();
-    batch.z = m_dz.data();
-    batch.ax = m_dax.data();
-    batch.ay = m_day.data();
-    batch.az = m_daz.data();
-    batch.area = c.area.data();
-    batch.cxx = c.cxx.data();
-    batch.cxy = c.cxy.data();
-    batch.cxz = c.cxz.data();
-    batch.cyy = c.cyy.data();
-    batch.cyz = c.cyz.data();
-    batch.czz = c.czz.data();
-    batch.halfHeight = m_dhalf.data();
-    batch.waterHeight = m_dh.data();
-    batch.ux = m_ux.data();
-    batch.uy = m_uy.data();
-    batch.uz = m_uz.data();
-    double part[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-    buoyancy::accumulateClusterDrag(batch, motion, part);
-    force = Eigen::Vector3d(part[0], part[1], part[2]);
-    torque = Eigen::Vector3d(part[3], part[4], part[5]);
-    const Eigen::Vector3d uSum(part[6], part[7], part[8]);
-    const double areaSum = part[9];
+    force = Eigen::Vector3d(sum[0], sum[1], sum[2]);
+    torque = Eigen::Vector3d(sum[3], sum[4], sum[5]);
+    const Eigen::Vector3d uSum(sum[6], sum[7], sum[8]);
+    const double areaSum = sum[9];
     meanWaterVelocity = areaSum > 0 ? Eigen::Vector3d(uSum / areaSum) : Eigen::Vector3d::Zero();
 }
 
@@ -245,8 +319,9 @@ const buoyancy::SurfaceSamples& btBuoyancyAction::getSamplesInUse() const {
 
 void btBuoyancyAction::dragEvaluationVelocity(const buoyancy::HydrostaticsResult& h, double dt, Eigen::Vector3d& v,
                                               Eigen::Vector3d& w) const {
-    // Added mass as in updateAction (design.md 2.7): (m + m_a) a = F − m g.
-    const double rho = m_world->getFluidDensity();
+    // Added mass as in updateAction (design.md 2.7): (m + m_a) a = F − m g. The density of the water chosen for this
+    // substep (water bodies), or the unbounded water's as it is now.
+    const double rho = m_world->getWaterBodies().empty() ? m_world->getFluidDensity() : m_activeDensity;
     const double m = 1.0 / double(m_body->getInvMass());
     const double ma = m_settings.addedMass ? m_settings.addedMassCoefficient * rho * std::max(h.submerged_volume, 0.0) : 0.0;
     const double meff = m + ma;
@@ -318,8 +393,11 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     m_result.applied = false;
     // A body removed from its world while this action stays in it: do nothing until it is back.
     if (!m_body->getBroadphaseHandle()) return;
+    // The unbounded water, or water bodies (btBuoyancyWorld::addWaterBody): chosen below, once the pose is known.
     const btWaterSurface* water = m_world->getWater();
-    if (!water || m_body->getInvMass() == btScalar(0)) return;
+    const std::vector<btWaterBody>& waterBodies = m_world->getWaterBodies();
+    const bool bounded = !waterBodies.empty();
+    if ((!water && !bounded) || m_body->getInvMass() == btScalar(0)) return;
     // No buoyancy without a gravity along the water's down axis (zero, or a world that is not y-up): say why,
     // forget the history (its fields belong to another gravity) and apply nothing; never a NaN or an exception.
     if (m_world->getGravityStatus() != btBuoyancyStatus::Ok) {
@@ -333,7 +411,8 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         m_pendingAngularSleep = btScalar(m_baseAngularSleep);
         return;
     }
-    const bool waves = water->isTimeVarying();
+    // Water bodies: any wavy one may reach the body; narrowed to the waters it reaches once they are known (below).
+    bool waves = bounded ? m_world->isAnyWaterBodyTimeVarying() : water->isTimeVarying();
     if (!m_body->isActive() && !waves) {  // calm water: a sleeping body stays asleep
         m_needsPrime = true;
         m_history.clear();
@@ -341,7 +420,6 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     }
 
     const double time = m_world->getTime();
-    const double rho = m_world->getFluidDensity();
     const double g = m_world->getGravity();
     // Everything below is evaluated in the water frame (btWaterFrame: the surface is y = f(x, z, t) there); the
     // impulses and the result are mapped back to the world at the end. Identity for a +y-up world.
@@ -360,9 +438,62 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // a deformable body's bounds follow its vertices
     const Eigen::Vector3d bc = pose * (m_deformable ? m_deformable->getBoundsCentre() : m_shape->getBoundsCentre());
     const double br = m_deformable ? m_deformable->getBoundsRadius() : m_shape->getBoundsRadius();
+    // Water bodies (design.md 2.9): the regions the bounding sphere reaches; none: no buoyancy and no drag, as above
+    // the water. The one nearest the centre of mass gives the drag's water and density. A sphere inside one region
+    // (within its sides and above its bottom) takes the single-water path below with that water; a body reaching out
+    // of its region or into several straddles: its pressure comes from regionHydrostatics, each part of its surface
+    // pressed by the water of the region it is in. One unbounded water: nothing to choose.
+    int waterBody = -1;
+    bool straddling = false;
     double lo = 0, hi = 0;
-    water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
-    if (bc.y() - br >= hi) {
+    if (bounded) {
+        const Eigen::Vector3d centreWorld = frame.toWorldPoint(bc);
+        waterBody = m_world->findWaterBody(centreWorld, br, toEigen(m_body->getCenterOfMassPosition()));
+        // (A deformable body's cut would need its deformed mesh: it takes the nearest region's water whole.)
+        if (waterBody >= 0 && !m_deformable) straddling = !reachesOnlyWaterBody(std::size_t(waterBody), centreWorld, br);
+        m_straddling = straddling;
+        if (straddling) {
+            // The water's bounds over the footprint: the widest of the regions reached.
+            m_regionsReached.clear();
+            for (std::size_t i = 0; i < waterBodies.size(); ++i) {
+                if (!(waterBodies[i].distanceTo(centreWorld) <= br)) continue;
+                m_regionsReached.push_back(regionOf(waterBodies[i]));
+                double l = 0, u = 0;
+                waterBodies[i].surface->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, l, u);
+                lo = m_regionsReached.size() == 1 ? l : std::min(lo, l);
+                hi = m_regionsReached.size() == 1 ? u : std::max(hi, u);
+            }
+        }
+        if (waterBody != m_activeWaterBody) {
+            m_history.clear();  // its records belong to another water
+            m_waterCache.reset();
+            m_dragCache.reset();
+            m_probeCache.reset();
+            m_patchCache.reset();
+            m_activeWaterBody = waterBody;
+        }
+        water = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].surface : nullptr;
+        m_activeDensity = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].fluidDensity : m_world->getFluidDensity();
+    } else {
+        m_activeDensity = m_world->getFluidDensity();
+        m_straddling = false;
+    }
+    m_activeWater = water;
+    if (bounded && waves) {
+        // Only the waters the body reaches keep it awake: a body asleep in a calm pool beside a wavy lake sleeps on.
+        waves = water && water->isTimeVarying();
+        if (straddling)
+            for (const buoyancy::WaterRegion& region : m_regionsReached) waves = waves || region.water->isTimeVarying();
+        if (!m_body->isActive() && !waves) {
+            m_needsPrime = true;
+            m_history.clear();
+            return;
+        }
+    }
+    const double rho = m_activeDensity;
+    if (water && !straddling) water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
+    if (straddling) m_history.clear();  // no temporal level of detail across regions (evaluated exactly)
+    if (!water || bc.y() - br >= hi) {
         m_needsPrime = false;  // dry: the missed kick was zero
         m_history.clear();
         m_hasLastCom = false;  // out of the water Bullet's own sleeping test is right again
@@ -389,7 +520,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     m_interval = interval;
     m_tolerance = btBuoyancyResolveReuseTolerance(m_settings);
     const bool temporalLod =
-        interval > 1 && m_settings.buoyancyEnabled && !m_deformable && !m_world->getDeviceBackend();
+        interval > 1 && !straddling && m_settings.buoyancyEnabled && !m_deformable && !m_world->getDeviceBackend();
     const bool evaluationSubstep = temporalLod && (substep + m_phase) % std::uint64_t(interval) == 0;
     btHydrostaticsSnapshot prediction;
     const bool predicted =
@@ -411,7 +542,8 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // method, or the samples) and the drag (its clusters) decide apart, so a small
     // body's drag probes do not put its hydrostatics on interpolated heights. Not needed by either: not built.
     const buoyancy::WaterPatch* dragPatch = nullptr;
-    if (!predicted && !flat && m_settings.waterPatchNodes > 0 && dynamic_cast<const btGerstnerWaterSurface*>(water)) {
+    if (!predicted && !flat && !straddling && m_settings.waterPatchNodes > 0 &&
+        dynamic_cast<const btGerstnerWaterSurface*>(water)) {
         const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength()));
         // The exact-mesh method counts its vertices, not its edge midpoints too: measured in the wave benchmark (the
         // 16-sided cylinder, 34 vertices and 96 edges, swell), exact heights took 13 µs and the patch 22 µs (its
@@ -440,7 +572,10 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     bool onDevice = false;  // h came from the world's device backend
     if (m_settings.buoyancyEnabled && !predicted) {
         try {  // never let an exception escape into Bullet's stepSimulation
-            if (flat && bc.y() + br <= flatH && !m_deformable) {
+            if (straddling) {
+                h = buoyancy::regionHydrostatics(m_shape->getMesh(), pose, m_regionsReached.data(),
+                                                 m_regionsReached.size(), time, g, com);
+            } else if (flat && bc.y() + br <= flatH && !m_deformable) {
                 h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (design.md 2.5)
             } else if (method == btBuoyancyMethod::ExactMesh) {
                 h = buoyancy::treeHydrostatics(m_shape->getMomentTree(), m_shape->getMesh(), pose, *water, time, rho, g,
@@ -579,7 +714,7 @@ double btBuoyancyAction::restEnergy(const buoyancy::HydrostaticsResult& h, doubl
         // Afloat: the energy of a heave whose amplitude moves the submerged volume by kRestVolumeFraction of it,
         // ½ k a² with k = ρ g A and a = ε V / A. A body put to sleep is then that close to its Archimedes draft.
         const double a = kRestVolumeFraction * h.submerged_volume / area;
-        return 0.5 * m_world->getFluidDensity() * g * area * a * a;
+        return 0.5 * m_activeDensity * g * area * a * a;
     }
     // Under water, on the bottom or in the air: the kinetic energy of a speed of kRestSpeedFraction √(g L).
     const double v = kRestSpeedFraction * std::sqrt(g * m_shape->getBoundsRadius());
@@ -602,7 +737,7 @@ double btBuoyancyAction::energyAboveEquilibrium(const buoyancy::HydrostaticsResu
     // (its metacentric part; the torque's energy is then not underestimated by a stiffer axis). A body with no
     // waterline (under water, or out of it) has no such spring: its kinetic energy alone decides.
     const double g = gravityAcc.norm();
-    const double rhoG = m_world->getFluidDensity() * g;
+    const double rhoG = m_activeDensity * g;
     const double area = h.waterline_area;
     if (rhoG > 0 && area > 0 && std::isfinite(area)) {
         const Eigen::Vector3d up = g > 0 ? Eigen::Vector3d(-gravityAcc / g) : Eigen::Vector3d::UnitY();
@@ -649,7 +784,7 @@ double btBuoyancyAction::allowedVelocityDeviation(double waterlineArea, double r
 
 void btBuoyancyAction::correctPose(btHydrostaticsSnapshot& predicted, const Eigen::Vector3d& com,
                                     const Eigen::Matrix3d& rotation) const {
-    btHydrostaticStiffnessCorrection(predicted, com, rotation, m_world->getFluidDensity() * m_world->getGravity());
+    btHydrostaticStiffnessCorrection(predicted, com, rotation, m_activeDensity * m_world->getGravity());
 }
 bool btBuoyancyAction::predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose,
                                            const Eigen::Vector3d& com, double bodyLow, double bodyHigh,
@@ -692,7 +827,7 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
                                           double effectiveMass, double dt) {
     const int interval = m_interval;
     const buoyancy::HydrostaticsResult& h = exact.hydrostatics;
-    const double scale = m_world->getFluidDensity() * m_world->getGravity() * m_shape->getUnitSolid().volume;
+    const double scale = m_activeDensity * m_world->getGravity() * m_shape->getUnitSolid().volume;
     const double diameter = 2.0 * m_shape->getBoundsRadius();
     // Check the predictor against this exact evaluation (one interval past the newest record: a little further than
     // any substep it predicted). A miss makes the body evaluate exactly until two checks in a row pass (one pass after a
@@ -760,7 +895,7 @@ void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrost
     }
     // Stiffness check: extrapolating over an interval is only accurate while the heave is slow against it
     // (ω K dt ≤ 0.3 with ω² = ρ g A_waterline / m_eff, design.md 2.7); a light, stiff body evaluates exactly.
-    const double omega2 = m_world->getFluidDensity() * m_world->getGravity() * h.waterline_area / effectiveMass;
+    const double omega2 = m_activeDensity * m_world->getGravity() * h.waterline_area / effectiveMass;
     const double step = double(interval) * dt;
     if (!(omega2 * step * step <= 0.09)) m_reuseCooldown = std::max(m_reuseCooldown, 1);
     const bool finite = h.force.allFinite() && h.torque.allFinite() && std::isfinite(h.submerged_volume) &&

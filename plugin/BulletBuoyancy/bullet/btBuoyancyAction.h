@@ -181,6 +181,23 @@ private:
     btVector3 m_pendingJ = btVector3(0, 0, 0), m_pendingL = btVector3(0, 0, 0);
     ///@}
     std::uint64_t m_rejected = 0;
+    /// @name The water of the current substep: the world's unbounded water, or the water body chosen (design.md 2.9)
+    ///@{
+    const btWaterSurface* m_activeWater = nullptr; ///< nullptr: no water reaches the body
+    double m_activeDensity = 1000.0;               ///< its ρ_w, kg/m³
+    int m_activeWaterBody = -1;                    ///< index in btBuoyancyWorld::getWaterBodies(), −1: none
+    /// The regions a straddling body reaches this substep (capacity kept: no allocation once grown).
+    std::vector<buoyancy::WaterRegion> m_regionsReached;
+    /// The body straddles water bodies this substep: pressure from regionHydrostatics, drag per region.
+    bool m_straddling = false;
+    /// Per drag cluster: already wet in an earlier region's pass of this substep (straddling drag).
+    std::vector<std::uint8_t> m_dassigned;
+    /// True when the sphere (`centre`, world, m; `radius`, m) is inside water body `index`'s box but its top and
+    /// reaches no other water body's box.
+    bool reachesOnlyWaterBody(std::size_t index, const Eigen::Vector3d& centre, double radius) const;
+    /// The box of `body` but its top as half-spaces of the world's water frame, with its water and density.
+    buoyancy::WaterRegion regionOf(const btWaterBody& body) const;
+    ///@}
     std::shared_ptr<btBuoyancyDeformable> m_deformable;  ///< re-baked samples of a deformable body
     /// True until the first hydrostatic kick after creation or sleep: Bullet has already applied gravity for
     /// a substep whose buoyancy kick (at the starting pose) was never given; see updateAction.

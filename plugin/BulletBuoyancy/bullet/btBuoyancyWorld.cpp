@@ -1,6 +1,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 
 #include <BulletBuoyancy/bullet/btBuoyancyDeviceBackend.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <BulletDynamics/Dynamics/btDynamicsWorld.h>
 
@@ -14,6 +15,18 @@
 namespace {
 /// Largest angle between the world's gravity and the water frame's down direction still taken as "down", rad.
 constexpr double kGravityAngleTolerance = 1e-6;
+
+/// "[x, y, z]" of a box corner, m.
+std::string cornerText(const Eigen::Vector3d& v) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "[%.6g, %.6g, %.6g]", v.x(), v.y(), v.z());
+    return buf;
+}
+
+/// "water body \"pool\" (region [..] to [..])".
+std::string waterBodyText(const btWaterBody& b) {
+    return "water body \"" + b.name + "\" (region " + cornerText(b.regionMin) + " to " + cornerText(b.regionMax) + ")";
+}
 
 std::string angleText(double radians) {
     char buf[64];
@@ -118,6 +131,79 @@ void btBuoyancyWorld::followGravity(double gx, double gy, double gz) {
 }
 
 btBuoyancyWorld::~btBuoyancyWorld() = default;
+
+void btBuoyancyWorld::setWater(const btWaterSurface* water) {
+    if (water && !m_waterBodies.empty())
+        throw std::invalid_argument("btBuoyancyWorld::setWater: the world has " + std::to_string(m_waterBodies.size()) +
+                                    " water bodies: an unbounded water and water bodies cannot be combined "
+                                    "(removeAllWaterBodies first)");
+    m_water = water;
+}
+
+int btBuoyancyWorld::addWaterBody(const btWaterBodyInfo& info) {
+    const std::string who = "btBuoyancyWorld::addWaterBody: ";
+    if (m_inBatch.load())
+        throw std::logic_error(who + "called while the world evaluates a substep's bodies; add water bodies between steps");
+    btWaterBody body;
+    body.name = info.name.empty() ? "water body " + std::to_string(m_waterBodies.size()) : info.name;
+    body.surface = info.surface;
+    body.fluidDensity = info.fluidDensity;
+    body.regionMin = Eigen::Vector3d(double(info.regionMin.x()), double(info.regionMin.y()), double(info.regionMin.z()));
+    body.regionMax = Eigen::Vector3d(double(info.regionMax.x()), double(info.regionMax.y()), double(info.regionMax.z()));
+    const std::string named = who + "\"" + body.name + "\": ";
+    if (m_water)
+        throw std::invalid_argument(named + "the world has an unbounded water: an unbounded water and water bodies "
+                                            "cannot be combined (construct the world with water = nullptr, or "
+                                            "setWater(nullptr) first)");
+    if (!body.surface) throw std::invalid_argument(named + "surface: must not be null");
+    if (!std::isfinite(body.fluidDensity) || !(body.fluidDensity > 0))
+        throw std::invalid_argument(named + "fluidDensity: must be a finite number > 0 (got " +
+                                    std::to_string(body.fluidDensity) + ")");
+    static const char* const axes[3] = {"x", "y", "z"};
+    for (int k = 0; k < 3; ++k) {
+        if (!std::isfinite(body.regionMin[k]))
+            throw std::invalid_argument(named + "regionMin." + axes[k] + ": must be finite");
+        if (!std::isfinite(body.regionMax[k]))
+            throw std::invalid_argument(named + "regionMax." + axes[k] + ": must be finite");
+        if (!(body.regionMin[k] < body.regionMax[k]))
+            throw std::invalid_argument(named + "regionMax." + axes[k] + ": must be greater than regionMin." + axes[k] +
+                                        " (" + cornerText(body.regionMin) + " to " + cornerText(body.regionMax) + ")");
+    }
+    for (const btWaterBody& other : m_waterBodies) {
+        // Boxes overlap when their open interiors meet on every axis (touching faces are accepted).
+        const bool overlap = (body.regionMin.array() < other.regionMax.array()).all() &&
+                             (other.regionMin.array() < body.regionMax.array()).all();
+        if (overlap)
+            throw std::invalid_argument(who + waterBodyText(body) + " overlaps " + waterBodyText(other) +
+                                        ": the regions of water bodies must not overlap");
+    }
+    m_waterBodies.push_back(body);
+    m_anyWaterBodyTimeVarying = m_anyWaterBodyTimeVarying || body.surface->isTimeVarying();
+    return int(m_waterBodies.size()) - 1;
+}
+
+void btBuoyancyWorld::removeAllWaterBodies() {
+    if (m_inBatch.load())
+        throw std::logic_error("btBuoyancyWorld::removeAllWaterBodies: called while the world evaluates a substep's "
+                               "bodies; change water bodies between steps");
+    m_waterBodies.clear();
+    m_anyWaterBodyTimeVarying = false;
+}
+
+int btBuoyancyWorld::findWaterBody(const Eigen::Vector3d& centre, double radius, const Eigen::Vector3d& point) const {
+    int best = -1;
+    double bestDistance = 0;
+    for (std::size_t i = 0; i < m_waterBodies.size(); ++i) {
+        const btWaterBody& b = m_waterBodies[i];
+        if (!(b.distanceTo(centre) <= radius)) continue;  // the sphere does not reach the box
+        const double d = b.distanceTo(point);
+        if (best < 0 || d < bestDistance) {
+            best = int(i);
+            bestDistance = d;
+        }
+    }
+    return best;
+}
 
 void btBuoyancyWorld::setFluidDensity(double density) {
     if (!std::isfinite(density) || density <= 0.0)

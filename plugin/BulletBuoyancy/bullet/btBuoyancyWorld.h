@@ -16,6 +16,7 @@
 /// explicitly). A frame whose up is not antiparallel to the world's gravity (beyond 1e-6 rad) is refused; gravity
 /// turned away from it later gives the bodies no buoyancy, with a status saying why.
 
+#include <BulletBuoyancy/bullet/btWaterBody.h>
 #include <BulletBuoyancy/bullet/btWaterFrame.h>
 
 #include <atomic>
@@ -74,12 +75,36 @@ public:
     btBuoyancyWorld(const btBuoyancyWorld&) = delete;
     btBuoyancyWorld& operator=(const btBuoyancyWorld&) = delete;
 
-    /// The water surface (may be nullptr: no buoyancy).
+    /// The unbounded water surface (may be nullptr: no unbounded water; see the water bodies below).
     const btWaterSurface* getWater() const { return m_water; }
-    /// Replace the water surface (not owned).
-    void setWater(const btWaterSurface* water) { m_water = water; }
-    /// ρ_w, kg/m³.
+    /// Replace the unbounded water surface (not owned; nullptr: none).
+    /// @throws std::invalid_argument for a non-null surface while the world has water bodies (one or the other)
+    void setWater(const btWaterSurface* water);
+    /// ρ_w of the unbounded water, kg/m³ (each water body has its own: btWaterBody::fluidDensity).
     double getFluidDensity() const { return m_fluidDensity; }
+
+    ///@name Water bodies (btWaterBody.h, design.md 2.9): several bounded waters instead of the unbounded one
+    /// Add a bounded water body: a surface inside an axis-aligned box of the world, with its own density. A body takes
+    /// its buoyancy and drag from the water bodies its bounding sphere reaches (none: no buoyancy, no drag); a body
+    /// straddling a region's side or bottom, or two regions, takes each part of its wetted surface from the water of
+    /// the region it is in (btBuoyancyAction, design.md 2.9). Add water bodies between steps.
+    /// @return the index of the new water body in getWaterBodies()
+    /// @throws std::invalid_argument naming the problem, the world unchanged: a null surface, a non-positive or
+    ///         non-finite density, a non-finite corner or one whose min is not below its max on an axis (the message
+    ///         names regionMin/regionMax and the axis), a region overlapping another water body's (the message names
+    ///         both bodies and their boxes; boxes that only touch are accepted), or a world with an unbounded water
+    ///         (construct it with water = nullptr, or setWater(nullptr) first)
+    int addWaterBody(const btWaterBodyInfo& info);
+    /// The water bodies, in the order added (empty: the unbounded water of getWater() applies).
+    const std::vector<btWaterBody>& getWaterBodies() const { return m_waterBodies; }
+    /// Remove every water body (between steps).
+    void removeAllWaterBodies();
+    /// True when some water body's surface changes over time (bodies near it are kept awake).
+    bool isAnyWaterBodyTimeVarying() const { return m_anyWaterBodyTimeVarying; }
+    /// The water body nearest `point` among those whose box the sphere (`centre`, `radius`) reaches, or −1 when the
+    /// sphere reaches none; ties go to the lower index. Points, world, m; radius, m, ≥ 0. O(number of water bodies).
+    int findWaterBody(const Eigen::Vector3d& centre, double radius, const Eigen::Vector3d& point) const;
+    ///@}
     /// @throws std::invalid_argument for a non-positive or non-finite density
     void setFluidDensity(double density);
     /// g, m/s²: the magnitude of the world's gravity in the current substep (0 when its status is not Ok).
@@ -191,6 +216,8 @@ private:
     btDynamicsWorld* m_dynamicsWorld = nullptr;
     const btWaterSurface* m_water;
     double m_fluidDensity;
+    std::vector<btWaterBody> m_waterBodies;   ///< addWaterBody (empty: the unbounded m_water)
+    bool m_anyWaterBodyTimeVarying = false;   ///< some water body's surface is time-varying
     double m_gravity;
     Eigen::Vector3d m_gravityVector = Eigen::Vector3d(0, -9.81, 0);
     bool m_gravityKnown = false;  ///< m_gravityVector was read from a world (or given)

@@ -76,7 +76,14 @@ void btFloodingAction::updateAction(btCollisionWorld*, btScalar deltaTimeStep) {
 
     // Water flows downhill only where the world's gravity points down the water's up axis: otherwise it stays put.
     if (m_world->getGravityStatus() != btBuoyancyStatus::Ok) return;
+    // The unbounded water, or the water body the hull's bounding sphere reaches nearest its centre of mass (the
+    // holes all take that water; the water inside keeps the world's density, btBuoyancyWorld::getFluidDensity).
     const btWaterSurface* water = m_world->getWater();
+    if (!m_world->getWaterBodies().empty()) {
+        const Eigen::Vector3d com = buoyancy::toEigen(rb->getCenterOfMassPosition());
+        const int k = m_world->findWaterBody(com, m_body->getShape()->getBoundsRadius(), com);
+        water = k >= 0 ? m_world->getWaterBodies()[std::size_t(k)].surface : nullptr;
+    }
     const double g = m_world->getGravity();
     const std::size_t n = m_holes.size();
     if (water && n > 0) {

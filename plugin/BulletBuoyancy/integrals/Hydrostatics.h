@@ -147,4 +147,29 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
                                       const btWaterSurface& water, double time, double fluidDensity, double gravity,
                                       const Eigen::Vector3d& torqueReference, const WaterPatch* patch = nullptr);
 
+/// One water region of regionHydrostatics: the water of `water` (density `fluidDensity`) inside the convex set
+/// {p : normal[k] · p ≤ offset[k], k < planeCount} (in the coordinates the pose and the surface use: the water frame).
+struct WaterRegion {
+    static constexpr int kMaxPlanes = 6;          ///< a box's faces
+    const btWaterSurface* water = nullptr;        ///< not owned
+    double fluidDensity = 1000.0;                 ///< ρ, kg/m³
+    int planeCount = 0;                           ///< number of half-spaces bounding the region
+    Eigen::Vector3d normal[kMaxPlanes];           ///< outward unit normals
+    double offset[kMaxPlanes] = {0, 0, 0, 0, 0, 0}; ///< the region is normal · p ≤ offset, m
+};
+
+/// The exact-mesh method for a body in several water regions (design.md 2.9): every triangle of the posed mesh is cut
+/// by each region's planes (Sutherland–Hodgman), and the part inside is clipped against that region's water (the plane
+/// through the corners' heights, as clippedHydrostatics) and integrated with that region's density. The force and
+/// torque are the pressure integral over the body's real wetted surface, each part pressed by its own water: exact for
+/// flat waters. The volume and centre of buoyancy sum the parts' ∫(y − f) n_y fields, which cut faces parallel to up
+/// (a box's sides) leave unchanged: exact for flat waters while the body stays above the regions' non-vertical cut
+/// planes (a box's bottom). Regions must not overlap. No allocation per call (thread-local scratch).
+/// @param regions  #count regions   @param gravity g, m/s²
+/// @throws std::invalid_argument for bad density/gravity or a non-finite pose; std::runtime_error for a non-finite
+///         water height or result
+HydrostaticsResult regionHydrostatics(const TriangleMesh& mesh, const Eigen::Isometry3d& pose, const WaterRegion* regions,
+                                      std::size_t count, double time, double gravity,
+                                      const Eigen::Vector3d& torqueReference);
+
 }  // namespace buoyancy
