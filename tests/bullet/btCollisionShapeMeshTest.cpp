@@ -245,3 +245,48 @@ TEST_CASE("your own btRigidBody: a btBoxShape, btSphereShape or btCapsuleShape b
     world.removeAction(&action);
     world.removeRigidBody(&body);
 }
+
+TEST_CASE("your own btRigidBody: a btSphereShape in flat water gets the sphere's cap, not its tessellation",
+          "[bullet][shapes]") {
+    // The cap height h of a sphere of radius R and density ratio s: π h² (3R − h) / 3 = s · 4/3 π R³, solved here by
+    // bisection. At that draft the submerged volume must be s V to float rounding (the tessellated sphere of the
+    // default tolerance holds 0.1 % less).
+    const double R = 0.5, s = 0.3, V = 4.0 / 3.0 * kPi * R * R * R;
+    double lo = 0, hi = 2 * R;
+    for (int i = 0; i < 200; ++i) {
+        const double h = 0.5 * (lo + hi);
+        (kPi * h * h * (3 * R - h) / 3 < s * V ? lo : hi) = h;
+    }
+    const double h = 0.5 * (lo + hi);
+    btDefaultCollisionConfiguration config;
+    btCollisionDispatcher dispatcher(&config);
+    btDbvtBroadphase broadphase;
+    btSequentialImpulseConstraintSolver solver;
+    btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
+    world.setGravity(btVector3(0, btScalar(-9.81), 0));
+    btFlatWaterSurface water(0.0);
+    btBuoyancyWorld buoyancyWorld(&world, &water, 1000.0);
+    btSphereShape sphere{btScalar(R)};
+    const btScalar mass = btScalar(1000.0 * s * V);
+    btVector3 inertia;
+    sphere.calculateLocalInertia(mass, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, &sphere, inertia);
+    info.m_startWorldTransform.setOrigin(btVector3(0.3f, btScalar(R - h), -0.2f));  // bottom at −h: draft h
+    btRigidBody body(info);
+    world.addRigidBody(&body);
+    btBuoyancyAction action(&body, &buoyancyWorld);
+    world.addAction(&action);
+    REQUIRE(action.getShape()->getSphereRadius() == Approx(R));
+    world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));
+    // Bullet runs actions after it has moved the body by this substep's gravity kick (g dt², 0.17 mm): the action saw
+    // the pose the body has now. The cap there, by the same formula:
+    const double hNow = R - double(body.getCenterOfMassPosition().y());
+    const double vNow = kPi * hNow * hNow * (3 * R - hNow) / 3;
+    CHECK(std::abs(hNow - h) < 1e-3);
+    const btBuoyancyResult& r = action.getLastResult();
+    CHECK(r.submergedVolume == Approx(vNow).epsilon(1e-5));
+    CHECK(double(r.buoyancyForce.y()) == Approx(1000.0 * 9.81 * vNow).epsilon(1e-5));
+    CHECK(double(r.buoyancyTorque.length()) < 1e-6 * double(r.buoyancyForce.length()));  // through the centre
+    world.removeAction(&action);
+    world.removeRigidBody(&body);
+}

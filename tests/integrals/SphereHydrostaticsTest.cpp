@@ -1,10 +1,17 @@
 // sphereHydrostatics against integrals computed here by quadrature (discs stacked along y for the volume and its
 // moment, a polar grid over the waterline disc for the waterplane moments) and against the half and full sphere.
+#include <BulletBuoyancy/bullet/btCollisionShapeMesh.h>
+#include <BulletBuoyancy/integrals/MeshMomentTree.h>
 #include <BulletBuoyancy/integrals/SphereHydrostatics.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
+#include <ctime>
 
 using namespace buoyancy;
 
@@ -74,4 +81,42 @@ TEST_CASE("sphere hydrostatics: caps at any depth against quadrature", "[integra
         CHECK(r.waterplane.xz == Approx(Ixz).epsilon(1e-5));
         CHECK(r.wetted_area == Approx(2 * kPi * R * (std::min(H, c.y() + R) - bottom)).epsilon(1e-12));
     }
+}
+
+TEST_CASE("sphere hydrostatics: timing against the tessellated sphere and the 12-triangle box (manual)", "[.timing]") {
+    // What a btSphereShape body costs in flat water, closed form against the mesh it used to float with (the default
+    // curvedShapeTolerance's 17,160 triangles), and a btBoxShape's 12 triangles for scale. Thread CPU time.
+    auto cpu = [] {
+        timespec ts{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+        return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+    };
+    const btSphereShape sphere{btScalar(0.5)};
+    const TriangleMesh sphereMesh = btCollisionShapeToMesh(sphere, 1e-3);
+    const MeshMomentTree sphereTree = buildMeshMomentTree(sphereMesh);
+    const TriangleMesh box = makeBoxMesh(1.0, 0.4, 0.8);
+    const MeshMomentTree boxTree = buildMeshMomentTree(box);
+    const btFlatWaterSurface water(0.0);
+    auto pose = [](int i) {
+        Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
+        p.linear() = Eigen::AngleAxisd(0.3 + 1e-3 * i, Eigen::Vector3d(1, 0, 0.2).normalized()).toRotationMatrix();
+        p.translation() = Eigen::Vector3d(0.1, -0.1 + 1e-4 * i, 0.2);
+        return p;
+    };
+    double sink = 0;
+    const int n = 200000, nMesh = 200;
+    double t0 = cpu();
+    for (int i = 0; i < n; ++i) sink += sphereHydrostatics(pose(i).translation(), 0.5, 0.0, 1000, 9.81, pose(i).translation()).submerged_volume;
+    const double closed = (cpu() - t0) * 1e9 / n;
+    t0 = cpu();
+    for (int i = 0; i < nMesh; ++i)
+        sink += treeHydrostatics(sphereTree, sphereMesh, pose(i), water, 0, 1000, 9.81, pose(i).translation(), nullptr).submerged_volume;
+    const double mesh = (cpu() - t0) * 1e9 / nMesh;
+    t0 = cpu();
+    for (int i = 0; i < n / 10; ++i)
+        sink += treeHydrostatics(boxTree, box, pose(i), water, 0, 1000, 9.81, pose(i).translation(), nullptr).submerged_volume;
+    const double boxNs = (cpu() - t0) * 1e9 / (n / 10);
+    std::printf("  flat water, one evaluation: sphere closed form %.0f ns, sphere mesh (%zu triangles) %.0f ns, "
+                "12-triangle box %.0f ns %g\n",
+                closed, sphereMesh.triangles.size(), mesh, boxNs, sink * 0);
 }

@@ -3,6 +3,7 @@
 #include <BulletBuoyancy/bullet/btBulletConvert.h>
 #include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
 #include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>
+#include <BulletBuoyancy/integrals/SphereHydrostatics.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 #include <BulletBuoyancy/integrals/DragKernel.h>
@@ -575,6 +576,9 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
             if (straddling) {
                 h = buoyancy::regionHydrostatics(m_shape->getMesh(), pose, m_regionsReached.data(),
                                                  m_regionsReached.size(), time, g, com);
+            } else if (flat && m_shape->getSphereRadius() > 0 && !m_deformable) {
+                // A btSphereShape in flat water: the cap in closed form (design.md 2.5 "Spheres in flat water").
+                h = buoyancy::sphereHydrostatics(pose.translation(), m_shape->getSphereRadius(), flatH, rho, g, com);
             } else if (flat && bc.y() + br <= flatH && !m_deformable) {
                 h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (design.md 2.5)
             } else if (method == btBuoyancyMethod::ExactMesh) {

@@ -4,6 +4,8 @@
 #include <BulletBuoyancy/mesh/MeshImport.h>
 #include <BulletBuoyancy/mesh/MeshRepair.h>
 
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+
 #include <BulletBuoyancy/atlas/UvLayout.h>
 #include <BulletBuoyancy/bake/BakeSamples.h>
 
@@ -69,7 +71,13 @@ bool finite(const buoyancy::MassProperties& m) {
 std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::fromCollisionShape(const btCollisionShape& shape,
                                                                            const btBuoyancySettings& settings) {
     settings.validate();
-    return create(btCollisionShapeToMesh(shape, settings.curvedShapeTolerance), settings);
+    std::shared_ptr<const btBuoyancyShape> made = create(btCollisionShapeToMesh(shape, settings.curvedShapeTolerance), settings);
+    if (shape.getShapeType() == SPHERE_SHAPE_PROXYTYPE) {
+        // Not shared with anyone yet: the one place a shape is completed after create().
+        std::const_pointer_cast<btBuoyancyShape>(made)->m_sphereRadius =
+            double(static_cast<const btSphereShape&>(shape).getRadius());
+    }
+    return made;
 }
 
 std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::create(buoyancy::TriangleMesh mesh,

@@ -62,6 +62,10 @@ public:
     const Eigen::Vector3d& getBoundsCentre() const { return m_boundsCentre; }
     /// Radius of the bounding sphere about getBoundsCentre(), m.
     double getBoundsRadius() const { return m_boundsRadius; }
+    /// > 0 for the shape of a btSphereShape: its radius, m (the sphere is centred at the mesh origin). In flat water
+    /// its hydrostatics are then the sphere's cap in closed form (exact, constant time) instead of its tessellation;
+    /// 0 for every other shape.
+    double getSphereRadius() const { return m_sphereRadius; }
     /// True when the samples were baked through an atlas the library generated (the model's UVs were missing or
     /// unusable); false for the model's own UVs and for ExactMesh (no texture).
     bool usesGeneratedUvs() const { return m_uvGenerated; }
@@ -84,6 +88,7 @@ private:
     buoyancy::MassProperties m_unitShell;
     Eigen::Vector3d m_boundsCentre = Eigen::Vector3d::Zero();
     double m_boundsRadius = 0;
+    double m_sphereRadius = 0;
     bool m_uvGenerated = false;
     std::vector<std::string> m_uvProblems;
     std::vector<buoyancy::MeshWarning> m_meshWarnings;
