@@ -40,6 +40,18 @@ Eigen::Vector3f waterPoint(const btWaterFrame& f, const btVector3& p) {
     return f.toWaterPoint(Eigen::Vector3d(double(p.x()), double(p.y()), double(p.z()))).cast<float>();
 }
 
+/// Eye–target distance at which a sphere of `radius` (m), centred `offsetY` above the target, fills about
+/// kFillFraction of a picture's height (or width) seen from an orbit camera with the vertical field of view `fovDeg`
+/// and the aspect width/height `aspect`.
+double framingDistance(double radius, double offsetY, float fovDeg, double aspect) {
+    constexpr double kFillFraction = 0.5;
+    const double halfTan = std::tan(0.5 * double(fovDeg) * M_PI / 180.0);
+    const double r = std::max(radius, 0.02);
+    const double byHeight = (r + std::abs(offsetY)) / (kFillFraction * halfTan);
+    const double byWidth = r / (kFillFraction * halfTan * aspect);
+    return std::max(byHeight, byWidth);
+}
+
 }  // namespace
 
 Eigen::Vector3f bodyColour(std::size_t index) {
@@ -48,6 +60,12 @@ Eigen::Vector3f bodyColour(std::size_t index) {
                                        {0.55f, 0.40f, 0.25f}, {0.85f, 0.85f, 0.85f}};
     const float* c = palette[index % (sizeof palette / sizeof palette[0])];
     return Eigen::Vector3f(c[0], c[1], c[2]);
+}
+
+Eigen::Vector3f wetColourOf(const Eigen::Vector3f& dry) {
+    // Darker and more saturated, the same hue: soaked paint, never the water's blue.
+    const float grey = dry.mean();
+    return (0.6f * (dry + 0.35f * (dry - Eigen::Vector3f::Constant(grey)))).cwiseMax(0.f).cwiseMin(1.f);
 }
 
 RenderCamera frameSceneCamera(const cli::Scene& scene, const cli::SceneWorld& world) {
@@ -67,11 +85,14 @@ RenderCamera frameSceneCamera(const cli::Scene& scene, const cli::SceneWorld& wo
     }
     if (world.bodies.empty()) lo = hi = Eigen::Vector3d(0, scene.waterHeight, 0);
     const Eigen::Vector3d centre = 0.5 * (lo + hi);
-    const double radius = std::max(0.5 * (hi - lo).norm(), 0.5);
     cam.target = centre.cast<float>();
-    cam.target.y() = float(0.5 * (centre.y() + scene.waterHeight));  // keep the waterline in view
+    // One body: its bounding sphere; several: the sphere around their bounding box.
+    const double radius = world.bodies.size() == 1 ? world.bodies[0]->getShape()->getBoundsRadius() : 0.5 * (hi - lo).norm();
+    // Keep the waterline in view when the bodies are near it.
+    const double waterY = scene.waterHeight;
+    if (std::abs(centre.y() - waterY) < radius + 0.5) cam.target.y() = float(0.5 * (centre.y() + waterY));
     cam.fovDeg = 40.f;
-    cam.distance = float(std::max(4.5, 1.0 * radius / std::sin(0.5 * cam.fovDeg * M_PI / 180.0)));
+    cam.distance = float(framingDistance(radius, centre.y() - double(cam.target.y()), cam.fovDeg, 16.0 / 9.0));
     // The scene's "camera" block overrides what it gives.
     if (scene.camera.target) cam.target = frame.toWaterPoint(*scene.camera.target).cast<float>();
     if (scene.camera.distance) cam.distance = float(*scene.camera.distance);
@@ -135,7 +156,11 @@ void buildSceneFrame(const cli::Scene& scene, const cli::SceneWorld& world, cons
         rb.mesh = &body.getShape()->getMesh();
         rb.meshToWorld = toMatrix(meshWorld);
         rb.colour = bodyColour(i);
-        rb.wetColour = 0.45f * rb.colour + Eigen::Vector3f(0.02f, 0.08f, 0.22f);
+        rb.wetColour = wetColourOf(rb.colour);
+        if (i < scene.bodies.size() && scene.bodies[i].shape.type == "sphere") {  // a ball's rotation shows
+            rb.octantPattern = true;
+            rb.patternCentre = body.getShape()->getBoundsCentre().cast<float>();
+        }
         out.bodies.push_back(rb);
 
         const btBuoyancyAction* action = i < world.actions.size() ? world.actions[i].get() : nullptr;

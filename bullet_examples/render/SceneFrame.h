@@ -26,7 +26,9 @@ struct SceneFrameOptions {
                                  ///< water always uses its own extent)
 };
 
-/// A camera that frames every body of the world at its current position (the pictures keep it fixed).
+/// A camera that frames every body of the world at its current position (the pictures keep it fixed): the bodies'
+/// bounding sphere fills about half the picture's height, the target is pulled towards the water level when the
+/// bodies are near it. The scene's "camera" block overrides each field it gives.
 RenderCamera frameSceneCamera(const cli::Scene& scene, const cli::SceneWorld& world);
 
 /// Fill `out` from the world's current state (out.camera is kept: set it with frameSceneCamera or a UI).
@@ -35,5 +37,8 @@ void buildSceneFrame(const cli::Scene& scene, const cli::SceneWorld& world, cons
 
 /// The dry colour of body number `index` (a fixed palette), linear RGB 0..1.
 Eigen::Vector3f bodyColour(std::size_t index);
+
+/// The colour of a body's wet surface: its dry colour darker and more saturated (the same hue, never the water's).
+Eigen::Vector3f wetColourOf(const Eigen::Vector3f& dry);
 
 }  // namespace buoyancy::render
