@@ -57,9 +57,9 @@ struct RenderWater {
     std::vector<float> heights;     ///< nx·nz heights (world y), index j·nx + i, m
     Eigen::Vector3f colour = Eigen::Vector3f(0.12f, 0.36f, 0.62f);
     /// Colour that what lies below the surface fades to with depth (and the bottom of open water), linear RGB 0..1.
-    Eigen::Vector3f deepColour = Eigen::Vector3f(0.03f, 0.15f, 0.26f);
+    Eigen::Vector3f deepColour = Eigen::Vector3f(0.05f, 0.21f, 0.34f);
     float alpha = 0.9f;             ///< opacity seen at a grazing angle (far water)
-    float alphaFacing = 0.3f;       ///< opacity looking straight down (near water: bodies below it stay visible)
+    float alphaFacing = 0.15f;      ///< opacity looking straight down (near water: bodies below it stay visible)
     /// Depth below the mean surface over which submerged things fade 63 % towards `deepColour`, m; 0: 0.35 × the
     /// camera distance.
     float fogDepth = 0;

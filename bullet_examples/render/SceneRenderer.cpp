@@ -95,7 +95,7 @@ void main() {
         vec3 h = normalize(uLightDir + toEye);
         colour += vec3(0.55) * pow(max(dot(n, h), 0.0), 80.0);
         // Fresnel-like: clear looking down, opaque at a grazing angle.
-        alpha = mix(uAlphaFacing, uAlpha, pow(1.0 - max(dot(n, toEye), 0.0), 3.0));
+        alpha = mix(uAlphaFacing, uAlpha, pow(1.0 - max(dot(n, toEye), 0.0), 5.0));
     }
     oColour = vec4(colour, alpha);
 }

@@ -158,9 +158,10 @@ TEST_CASE("the ball-stability strip shows frames where the uniform ball has roll
         uniform.push_back(tiltDeg(*world->bodies[0]));
         ballasted.push_back(tiltDeg(*world->bodies[1]));
     }
+    std::ostringstream tilts;
     for (std::size_t i = 0; i < frames.size(); ++i)
-        INFO("frame " << frames[i] << ": uniform " << uniform[i] << " deg, ballasted " << ballasted[i] << " deg");
-    INFO("last frame: uniform " << uniform.back() << " deg, ballasted " << ballasted.back() << " deg");
+        tilts << "frame " << frames[i] << ": uniform " << uniform[i] << " deg, ballasted " << ballasted[i] << " deg; ";
+    INFO(tilts.str());
     // The last picture: the uniform ball past lying on its side, the ballasted one near upright, 60° apart at least.
     CHECK(uniform.back() > 90.0);
     CHECK(ballasted.back() < 20.0);
@@ -175,18 +176,28 @@ TEST_CASE("every picture of buoyancy run --png carries its time in a label", "[e
     const fs::path d = scratch("label");
     REQUIRE(shell(std::string(BUOYANCY_CLI_PATH) + " run " + kScenes + "heave_box.json --duration 0.02 --out " +
                   (d / "out").string() + " --png " + (d / "png").string() + " --size 240 135 2>/dev/null") == 0);
-    // output_interval 0.01: t = 0, 0.01, 0.02.
-    for (const auto& [file, label] : {std::pair{"frame_00000.png", "t = 0.0 s"}, std::pair{"frame_00002.png", "t = 0.02 s"}}) {
+    // output_interval 0.01 s, frames of 4 × 1/240 s: pictures at the frame boundaries t = 0, 1/60, 2/60 s.
+    for (const auto& [file, label] : {std::pair{"frame_00000.png", "t = 0.0 s"}, std::pair{"frame_00001.png", "t = 0.02 s"},
+                                      std::pair{"frame_00002.png", "t = 0.03 s"}}) {
         Picture p;
         REQUIRE(p.load((d / "png" / file).string()));
+        // The expected label: the same text stamped by the font onto a blank picture of the same size.
+        std::vector<std::uint8_t> expected(std::size_t(p.width) * p.height * 4, 0);
         const render::LabelStyle style;
-        const render::LabelBox box = render::labelBox(label, style);
-        const Eigen::Vector3d text(style.text[0], style.text[1], style.text[2]), back(style.box[0], style.box[1], style.box[2]);
-        const int textPixels = p.countInBox(box.left, box.top, box.width, box.height, [&](const Eigen::Vector3d& c) { return distance(c, text) < 1; });
-        const int backPixels = p.countInBox(box.left, box.top, box.width, box.height, [&](const Eigen::Vector3d& c) { return distance(c, back) < 1; });
-        INFO(file << ": text " << textPixels << ", box " << backPixels << " of " << box.width * box.height);
-        // Every pixel of the box is text or box colour; the text takes at least 7 dots per drawn glyph.
-        CHECK(textPixels + backPixels == box.width * box.height);
+        const render::LabelBox box = render::stampLabel(expected, p.width, p.height, label, style);
+        const Eigen::Vector3d text(style.text[0], style.text[1], style.text[2]);
+        int textPixels = 0, mismatches = 0;
+        for (int y = box.top; y < box.top + box.height; ++y)
+            for (int x = box.left; x < box.left + box.width; ++x) {
+                const std::uint8_t* e = &expected[4 * (std::size_t(y) * p.width + x)];
+                const Eigen::Vector3d want(e[0], e[1], e[2]);
+                mismatches += distance(p.at(x, y), want) > 0.5;
+                textPixels += distance(p.at(x, y), text) < 0.5;
+            }
+        INFO(file << " (" << label << "): " << textPixels << " text pixels, " << mismatches << " pixels differ of "
+                  << box.width * box.height);
+        CHECK(mismatches == 0);
+        // At least 7 dots of 2 × 2 pixels per drawn glyph.
         CHECK(textPixels >= 7 * 4 * int(std::count_if(label, label + std::strlen(label), [](char c) { return c != ' '; })));
     }
     fs::remove_all(d);
