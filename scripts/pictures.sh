@@ -22,7 +22,7 @@ scenes=(
   "variable_density_ball 20 0 100 200"
   "plush_toy           60  0 60 120"
   "balloon_air         3   0 12 24"
-  "fft_fleet           3   5 15 30"
+  "fft_fleet           6   0 30 60"
   "beach_boat          12  0 50 120"
   "crate_splash        2   10 20 40"
   "demo_boat_gerstner  10  10 50 100"

@@ -35,9 +35,9 @@ struct RenderBody {
     Eigen::Matrix4f meshToWorld = Eigen::Matrix4f::Identity();
     Eigen::Vector3f colour = Eigen::Vector3f(0.85f, 0.55f, 0.25f); ///< dry colour, linear RGB 0..1
     Eigen::Vector3f wetColour = Eigen::Vector3f(0.5f, 0.3f, 0.11f); ///< colour of the surface below the water
-    /// Paint the body's octants (mesh frame, about `patternCentre`) alternately in its colour and white, like a
-    /// beach ball, so that a round body's rotation shows.
-    bool octantPattern = false;
+    /// Paint the half of the body below its mesh frame's x–z plane through `patternCentre` white, so that a round
+    /// body's tilt shows: upright, its colour is on top; rolled over, the white half is.
+    bool twoTonePattern = false;
     Eigen::Vector3f patternCentre = Eigen::Vector3f::Zero(); ///< mesh frame, m
 };
 
@@ -63,9 +63,10 @@ struct RenderWater {
     /// Depth below the mean surface over which submerged things fade 63 % towards `deepColour`, m; 0: 0.35 × the
     /// camera distance.
     float fogDepth = 0;
-    /// Brighten crests and darken troughs by up to this fraction (scaled to the frame's largest wave), so that
-    /// small ripples (the rings of a splash) show.
-    float crestShading = 0.35f;
+    /// Crest shading at the frame's largest wave (0: none, 1: fully light and opaque): crests lighter and troughs
+    /// darker, both more opaque, by the square root of their height over the largest wave's, so that small ripples
+    /// (the rings of a splash) show.
+    float crestShading = 0.6f;
     bool waterline = true;          ///< draw the waterline on the bodies (a light line where they cut the surface)
 };
 

@@ -26,9 +26,10 @@ struct SceneFrameOptions {
                                  ///< water always uses its own extent)
 };
 
-/// A camera that frames every body of the world at its current position (the pictures keep it fixed): the bodies'
-/// bounding sphere fills about half the picture's height, the target is pulled towards the water level when the
-/// bodies are near it. The scene's "camera" block overrides each field it gives.
+/// A camera that frames every body of the world at its current position (the pictures keep it fixed): it looks at
+/// the centre of the bodies' bounding box (pulled towards the water level when the bodies are near it) and moves in
+/// until their vertices fill about 60 % of a 16:9 picture's width or height. The scene's "camera" block overrides
+/// each field it gives; a given yaw or pitch is used for the fit.
 RenderCamera frameSceneCamera(const cli::Scene& scene, const cli::SceneWorld& world);
 
 /// Fill `out` from the world's current state (out.camera is kept: set it with frameSceneCamera or a UI).

@@ -42,13 +42,14 @@ uniform float uAlphaFacing;   // water: opacity looking straight down (uAlpha: a
 uniform int uMode;            // 0 body, 1 plain (unlit), 2 ground, 3 water, 4 arrow (lit, no wet test), 5 deep plane
 uniform int uHasWater;
 uniform int uWaterline;       // 1: a light line where a body cuts the surface
-uniform int uOctants;         // 1: paint the body's octants (beach ball)
+uniform int uTwoTone;         // 1: paint the body's lower half (mesh frame) white
 uniform vec3 uPatternCentre;  // mesh frame
 uniform sampler2D uHeights;   // water heights, texel (i, j) = sample (i, j) of the grid
 uniform vec4 uWaterGrid;      // x0, z0, dx, dz
 uniform vec2 uWaterSize;      // nx, nz
 uniform float uWaterMean;
-uniform float uCrest;         // crest shading per metre above the mean (0: none)
+uniform float uCrest;         // 1 / the frame's largest wave height over the mean, 1/m (0: flat water, no crest shading)
+uniform float uCrestAmount;   // crest shading at the largest crest, 0..1
 uniform vec3 uDeepColour;
 uniform float uFogDepth;      // m
 uniform vec3 uLightDir;
@@ -75,10 +76,7 @@ void main() {
         float below = waterHeight(vWorld.xz) - vWorld.y;
         if (uMode == 0) {
             if (below > 0.0) base = uWetColour;
-            if (uOctants == 1) {
-                vec3 q = vLocal - uPatternCentre;
-                if ((q.x > 0.0) != ((q.y > 0.0) != (q.z > 0.0))) base = mix(base, vec3(0.97), below > 0.0 ? 0.45 : 0.8);
-            }
+            if (uTwoTone == 1 && vLocal.y < uPatternCentre.y) base = mix(base, vec3(0.97), below > 0.0 ? 0.5 : 0.85);
             // The waterline: within about 1.5 pixels of the surface height.
             float perPixel = max(fwidth(below), 1e-6);
             onWaterline = uWaterline == 1 && abs(below) < 1.5 * perPixel;
@@ -91,11 +89,16 @@ void main() {
     if ((uMode == 0 || uMode == 2) && depth > 0.0) colour = mix(colour, uDeepColour, 1.0 - exp(-depth / uFogDepth));
     float alpha = uAlpha;
     if (uMode == 3) {
-        colour *= 1.0 + clamp((vWorld.y - uWaterMean) * uCrest, -1.0, 1.0);
         vec3 h = normalize(uLightDir + toEye);
         colour += vec3(0.55) * pow(max(dot(n, h), 0.0), 80.0);
         // Fresnel-like: clear looking down, opaque at a grazing angle.
         alpha = mix(uAlphaFacing, uAlpha, pow(1.0 - max(dot(n, toEye), 0.0), 5.0));
+        // Crests light and troughs dark, both more opaque, so that ripples show over the clear near water.
+        // Height over the largest wave, square-rooted: small ripples far from a splash still show.
+        float relative = clamp((vWorld.y - uWaterMean) * uCrest, -1.0, 1.0);
+        float crest = sign(relative) * sqrt(abs(relative)) * uCrestAmount;
+        colour = crest > 0.0 ? mix(colour, vec3(0.72, 0.86, 0.97), 0.8 * crest) : colour * (1.0 + 0.6 * crest);
+        alpha = max(alpha, min(abs(crest), 1.0) * 0.75);
     }
     oColour = vec4(colour, alpha);
 }
@@ -181,8 +184,8 @@ struct SceneRenderer::Impl {
     GLuint program = 0;
     GLint uModel = -1, uViewProj = -1, uPointSize = -1, uColour = -1, uWetColour = -1, uAlpha = -1, uMode = -1,
           uHasWater = -1, uHeights = -1, uWaterGrid = -1, uWaterSize = -1, uWaterMean = -1, uLightDir = -1, uEye = -1,
-          uAlphaFacing = -1, uWaterline = -1, uOctants = -1, uPatternCentre = -1, uCrest = -1, uDeepColour = -1,
-          uFogDepth = -1;
+          uAlphaFacing = -1, uWaterline = -1, uTwoTone = -1, uPatternCentre = -1, uCrest = -1, uDeepColour = -1,
+          uFogDepth = -1, uCrestAmount = -1;
     GpuMesh arrow, water, ground, points;
     int waterNx = 0, waterNz = 0;
     GLuint heightTexture = 0;
@@ -291,9 +294,10 @@ SceneRenderer::SceneRenderer() : m_impl(std::make_unique<Impl>()) {
     r.uEye = loc("uEye");
     r.uAlphaFacing = loc("uAlphaFacing");
     r.uWaterline = loc("uWaterline");
-    r.uOctants = loc("uOctants");
+    r.uTwoTone = loc("uTwoTone");
     r.uPatternCentre = loc("uPatternCentre");
     r.uCrest = loc("uCrest");
+    r.uCrestAmount = loc("uCrestAmount");
     r.uDeepColour = loc("uDeepColour");
     r.uFogDepth = loc("uFogDepth");
 
@@ -365,7 +369,7 @@ void SceneRenderer::draw(const RenderFrame& frame, int width, int height) {
     glUniform1f(r.uFogDepth, fogDepth);
     glUniform3f(r.uDeepColour, w.deepColour.x(), w.deepColour.y(), w.deepColour.z());
     glUniform1i(r.uWaterline, w.waterline ? 1 : 0);
-    glUniform1i(r.uOctants, 0);
+    glUniform1i(r.uTwoTone, 0);
     glUniform1f(r.uAlphaFacing, w.alphaFacing);
     glUniform1f(r.uCrest, 0.f);
     if (hasWater) {
@@ -380,7 +384,8 @@ void SceneRenderer::draw(const RenderFrame& frame, int width, int height) {
         glUniform1f(r.uWaterMean, waterMean);
         // Crest shading scaled to the largest wave of the frame; none on (nearly) flat water.
         const float flat = 1e-3f * std::max(cam.distance, 1.f);
-        glUniform1f(r.uCrest, largestWave > flat ? w.crestShading / largestWave : 0.f);
+        glUniform1f(r.uCrest, largestWave > flat ? 1.f / largestWave : 0.f);
+        glUniform1f(r.uCrestAmount, w.crestShading);
     }
 
     // Ground: a large sandy quad on the plane, centred below the camera target, fading to deep water with depth.
@@ -425,12 +430,12 @@ void SceneRenderer::draw(const RenderFrame& frame, int width, int height) {
         r.setModel(body.meshToWorld);
         r.setColour(body.colour, 1.f);
         glUniform3f(r.uWetColour, body.wetColour.x(), body.wetColour.y(), body.wetColour.z());
-        glUniform1i(r.uOctants, body.octantPattern ? 1 : 0);
+        glUniform1i(r.uTwoTone, body.twoTonePattern ? 1 : 0);
         glUniform3f(r.uPatternCentre, body.patternCentre.x(), body.patternCentre.y(), body.patternCentre.z());
         glBindVertexArray(g.vao);
         glDrawElements(GL_TRIANGLES, g.indexCount, GL_UNSIGNED_INT, nullptr);
     }
-    glUniform1i(r.uOctants, 0);
+    glUniform1i(r.uTwoTone, 0);
 
     // Sample points (wet blue, dry white), unlit.
     if (!frame.samples.positions.empty()) {
