@@ -17,7 +17,7 @@ mkdir -p "$out" "$work"
 scenes=(
   "buoy_waves          6   10 30 50"
   "boat_holed_bow      12  4 12 20"
-  "boat_holed_stern    20  12 24 40"
+  "boat_holed_stern    20  0 20 40"
   "ball_stability      2   0 10 20"
   "variable_density_ball 20 0 100 200"
   "plush_toy           60  0 60 120"

@@ -104,7 +104,8 @@ bool committed() { return ImGui::IsItemDeactivatedAfterEdit(); }
 /// The scenes as one drop-down (grouped under their headings): one line of the panel, not a screenful.
 void sceneList(Browser& b) {
     const char* current = b.entry >= 0 ? examples::exampleEntry(b.entry).name : "(none)";
-    if (!ImGui::BeginCombo("scene", current, ImGuiComboFlags_HeightLarge)) {
+    ImGui::SetNextItemWidth(kPanelContentWidth);
+    if (!ImGui::BeginCombo("##scene", current, ImGuiComboFlags_HeightLarge)) {
         if (b.entry >= 0 && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", examples::exampleEntry(b.entry).description);
         return;
     }
