@@ -1,9 +1,9 @@
 // What the pictures show, measured: every frame carries its time label; the automatic camera makes a small body
 // a visible share of the picture; the wet hull, the dry hull and the water are clearly different colours, with the
 // waterline drawn between them; the frames the ball-stability strip shows are frames where the two balls' tilts
-// differ (read from the scene's state, not from the picture). Expected values come from the scene (its poses and
-// the camera it gives) or from thresholds stated here. Pictures come from `buoyancy run --png` in a child process
-// (the tests' floating-point traps stay out of Mesa's llvmpipe).
+// differ (read from the scene's state, not from the picture); force arrows show through the bodies they start in.
+// Expected values come from the scene (its poses and the camera it gives) or from thresholds stated here. Pictures
+// come from `buoyancy run --png` in a child process (the tests' floating-point traps stay out of Mesa's llvmpipe).
 
 #include "PictureChecks.h"
 
@@ -252,6 +252,40 @@ TEST_CASE("wet hull, dry hull and water are clearly different colours, with the 
         line = line || c.minCoeff() >= 200;
     }
     CHECK(line);
+    fs::remove_all(d);
+}
+TEST_CASE("force arrows are drawn on top: the weight arrow shows inside the ball it starts in", "[examples]") {
+    const fs::path d = scratch("arrow");
+    const int W = 320, H = 180;
+    REQUIRE(shell(std::string(BUOYANCY_CLI_PATH) + " run " + kScenes + "ball_stability.json --duration 0 --out " +
+                  (d / "out").string() + " --png " + (d / "png").string() + " --size 320 180 2>/dev/null") == 0);
+    Picture p;
+    REQUIRE(p.load((d / "png" / "frame_00000.png").string()));
+    const cli::Scene scene = cli::loadSceneFile(kScenes + "ball_stability.json");
+    auto world = cli::buildSceneWorld(scene, 10.0);
+    const render::RenderCamera cam = render::frameSceneCamera(scene, *world);
+    // The weight arrow of each ball runs down from its centre of mass; 0.15 m below it the arrow is still inside
+    // the ball (radius 0.5 m), so only an arrow drawn on top shows there. Arrow red: red over twice green and blue
+    // (the balls are orange, yellow and white; the water blue).
+    int found = 0;
+    std::ostringstream seen;
+    for (const auto& body : world->bodies) {
+        const btVector3 com = body->getRigidBody()->getCenterOfMassPosition();
+        const Eigen::Vector3f inside(float(com.x()), float(com.y()) - 0.15f, float(com.z()));
+        const btVector3 ballCentre = body->getMeshWorldTransform().getOrigin();  // the sphere's mesh is centred
+        REQUIRE(double((inside - Eigen::Vector3f(float(ballCentre.x()), float(ballCentre.y()), float(ballCentre.z()))).norm()) < 0.5);
+        const Eigen::Vector2d at = project(cam, inside, W, H);
+        bool red = false;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const Eigen::Vector3d c = p.at(int(at.x()) + dx, int(at.y()) + dy);
+                red = red || (c.x() > 2 * c.y() && c.x() > 2 * c.z() && c.x() > 80);
+            }
+        seen << p.at(int(at.x()), int(at.y())).transpose() << " at " << at.transpose() << "; ";
+        found += red ? 1 : 0;
+    }
+    INFO(seen.str());
+    CHECK(found == 2);
     fs::remove_all(d);
 }
 #endif
