@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Join PNG pictures of one size into a strip (or a grid): python3 scripts/png_strip.py OUT.png IN1.png IN2.png ...
-[--columns N]. Standard library only (zlib): reads the 8-bit RGB/RGBA, non-interlaced PNGs stb_image_write makes
-(`buoyancy run --png`), writes 8-bit RGB. Used by scripts/pictures.sh."""
+[--columns N] [--gap PIXELS]. The pictures are separated by white gaps (default 4 pixels) so that each frame, with
+the time label `buoyancy run --png` stamps into its corner, reads on its own. Standard library only (zlib): reads
+the 8-bit RGB/RGBA, non-interlaced PNGs stb_image_write makes (`buoyancy run --png`), writes 8-bit RGB. Used by
+scripts/pictures.sh."""
 import struct
 import sys
 import zlib
@@ -57,10 +59,14 @@ def write_png(path, width, height, rows):
 
 
 def main(argv):
-    columns = None
+    columns, gap = None, 4
     if "--columns" in argv:
         i = argv.index("--columns")
         columns = int(argv[i + 1])
+        del argv[i:i + 2]
+    if "--gap" in argv:
+        i = argv.index("--gap")
+        gap = int(argv[i + 1])
         del argv[i:i + 2]
     if len(argv) < 3:
         sys.exit(__doc__)
@@ -70,13 +76,17 @@ def main(argv):
         sys.exit("png_strip: the pictures differ in size")
     columns = columns or len(pictures)
     lines = (len(pictures) + columns - 1) // columns
-    blank = bytes(3 * w)
+    blank, white = bytes(3 * w), b"\xff" * (3 * gap)
+    width = columns * w + (columns - 1) * gap
     rows = []
     for r in range(lines):
+        if r > 0:
+            rows.extend([b"\xff" * (3 * width)] * gap)
         group = pictures[r * columns:(r + 1) * columns]
+        group_rows = [p[2] for p in group] + [[blank] * h] * (columns - len(group))
         for y in range(h):
-            rows.append(b"".join(p[2][y] for p in group) + blank * (columns - len(group)))
-    write_png(out, columns * w, lines * h, rows)
+            rows.append(white.join(g[y] for g in group_rows))
+    write_png(out, width, lines * h + (lines - 1) * gap, rows)
 
 
 if __name__ == "__main__":

@@ -94,24 +94,31 @@ struct Browser {
 };
 
 const int kTextures[] = {0, 32, 64, 128, 256, 512};
+/// Width of the panel's plots and sliders, pixels: the panel takes what its contents need and no more.
+constexpr float kPanelContentWidth = 250.f;
 const char* kTextureNames[] = {"default (exact mesh)", "32", "64", "128", "256", "512"};
 
 /// Slider that reports true once the user let go after a change (rebuild only then).
 bool committed() { return ImGui::IsItemDeactivatedAfterEdit(); }
 
+/// The scenes as one drop-down (grouped under their headings): one line of the panel, not a screenful.
 void sceneList(Browser& b) {
-    ImGui::TextUnformatted("Scenes");
+    const char* current = b.entry >= 0 ? examples::exampleEntry(b.entry).name : "(none)";
+    ImGui::SetNextItemWidth(kPanelContentWidth);
+    if (!ImGui::BeginCombo("##scene", current, ImGuiComboFlags_HeightLarge)) {
+        if (b.entry >= 0 && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", examples::exampleEntry(b.entry).description);
+        return;
+    }
     for (int i = 0; i < examples::exampleEntryCount(); ++i) {
         const examples::ExampleEntry& e = examples::exampleEntry(i);
         if (e.menuLevel == 0) {
-            ImGui::Separator();
             ImGui::TextDisabled("%s", e.name);
             continue;
         }
         if (ImGui::Selectable(e.name, b.entry == i)) b.open(i);
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", e.description);
     }
-    ImGui::Separator();
+    ImGui::EndCombo();
 }
 
 void controls(Browser& b) {
@@ -128,19 +135,26 @@ void controls(Browser& b) {
     }
     ImGui::SameLine();
     if (ImGui::Button("Camera") && b.example) b.example->resetCamera();
-    ImGui::SliderFloat("speed", &b.speed, 0.1f, 2.f, "%.2fx");
+    // The value goes in the label, not inside the slider, so the grab never covers it.
+    char speedLabel[32];
+    std::snprintf(speedLabel, sizeof speedLabel, "speed %.2fx###speed", double(b.speed));
+    ImGui::SliderFloat(speedLabel, &b.speed, 0.1f, 2.f, "");
     if (!b.sceneExample) return;
     render::SceneFrameOptions& fo = b.sceneExample->frameOptions();
     ImGui::Checkbox("force arrows", &fo.arrows);
     ImGui::SameLine();
     ImGui::Checkbox("samples", &fo.samples);
-    ImGui::TextDisabled("arrows: weight red, buoyancy green, drag blue");
+    ImGui::TextColored(ImVec4(0.95f, 0.35f, 0.35f, 1), "weight");
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(0.35f, 0.9f, 0.4f, 1), "buoyancy");
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(0.45f, 0.6f, 1.f, 1), "drag");
 }
 
 void sliders(Browser& b) {
     if (!b.sceneExample) return;
     cli::Scene& s = b.sceneExample->scene();
-    if (!ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (!ImGui::CollapsingHeader("Parameters")) return;
     bool rebuild = false;
 
     // Bodies: density or mass of one body (a fleet has many).
@@ -257,7 +271,7 @@ void plots(Browser& b) {
     if (shown > 0) {
         const float* sub = h.submerged.data() + (n - shown);
         const float* in = h.waterInside.data() + (n - shown);
-        const ImVec2 size(std::max(60.f, ImGui::GetContentRegionAvail().x), 70.f);
+        const ImVec2 size(kPanelContentWidth, 46.f);
         char overlay[64];
         std::snprintf(overlay, sizeof overlay, "submerged %.4f m3", double(sub[shown - 1]));
         ImGui::PlotLines("##sub", sub, shown, 0, overlay, FLT_MAX, FLT_MAX, size);
@@ -348,14 +362,22 @@ int runBrowser(const BrowserOptions& options) {
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();
             ImGui::NewFrame();
+            // The panel: as large as its contents (collapse it with the arrow of its title bar; "Parameters"
+            // opens the sliders).
             ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Once);
-            ImGui::SetNextWindowSize(ImVec2(380, float(options.height) - 16), ImGuiCond_Once);
-            ImGui::Begin("BulletBuoyancy");
+            ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(FLT_MAX, float(options.height) - 16));
+            ImGui::Begin("BulletBuoyancy", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+            ImGui::PushItemWidth(kPanelContentWidth * 0.62f);
             sceneList(b);
             controls(b);
             plots(b);
             sliders(b);
-            if (!b.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", b.error.c_str());
+            if (!b.error.empty()) {
+                ImGui::PushTextWrapPos(kPanelContentWidth);
+                ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", b.error.c_str());
+                ImGui::PopTextWrapPos();
+            }
+            ImGui::PopItemWidth();
             ImGui::End();
             cameraInput(b, window);
             ImGui::Render();

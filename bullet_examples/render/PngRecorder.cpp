@@ -1,6 +1,7 @@
 #include "render/PngRecorder.h"
 
 #include "scene/SceneErrors.h"
+#include "render/FrameLabel.h"
 #include "render/OffscreenContext.h"
 #include "render/PngWriter.h"
 #include "render/SceneFrame.h"
@@ -14,17 +15,18 @@ namespace buoyancy::render {
 
 namespace {
 
-/// Renders each frame into DIR/frame_NNNNN.png.
+/// Renders each frame into DIR/frame_NNNNN.png, its time stamped in the top-left corner.
 class PngSink : public cli::SceneFrameSink {
 public:
     PngSink(std::string dir, int width, int height) : m_dir(std::move(dir)), m_context(width, height), m_renderer() {}
 
-    void frame(const cli::Scene& scene, const cli::SceneWorld& world, double) override {
+    void frame(const cli::Scene& scene, const cli::SceneWorld& world, double t) override {
         if (m_index == 0) m_frame.camera = frameSceneCamera(scene, world);
         buildSceneFrame(scene, world, m_options, m_frame);
         m_context.bind();
         m_renderer.draw(m_frame, m_context.width(), m_context.height());
         m_context.readPixels(m_pixels);
+        stampLabel(m_pixels, m_context.width(), m_context.height(), timeLabel(t), m_label);
         char name[32];
         std::snprintf(name, sizeof name, "frame_%05d.png", m_index++);
         try {
@@ -39,6 +41,7 @@ private:
     OffscreenContext m_context;  // first: the renderer needs its context current
     SceneRenderer m_renderer;
     SceneFrameOptions m_options;
+    LabelStyle m_label;
     RenderFrame m_frame;
     std::vector<std::uint8_t> m_pixels;
     int m_index = 0;

@@ -34,7 +34,11 @@ struct RenderBody {
     std::uint64_t meshVersion = 0;  ///< bump when the mesh's vertices change (deformable bodies): re-uploaded
     Eigen::Matrix4f meshToWorld = Eigen::Matrix4f::Identity();
     Eigen::Vector3f colour = Eigen::Vector3f(0.85f, 0.55f, 0.25f); ///< dry colour, linear RGB 0..1
-    Eigen::Vector3f wetColour = Eigen::Vector3f(0.35f, 0.25f, 0.3f); ///< colour of the surface below the water
+    Eigen::Vector3f wetColour = Eigen::Vector3f(0.5f, 0.3f, 0.11f); ///< colour of the surface below the water
+    /// Paint the half of the body below its mesh frame's x–z plane through `patternCentre` white, so that a round
+    /// body's tilt shows: upright, its colour is on top; rolled over, the white half is.
+    bool twoTonePattern = false;
+    Eigen::Vector3f patternCentre = Eigen::Vector3f::Zero(); ///< mesh frame, m
 };
 
 /// A force arrow from `origin` along `vector` (both world, m; the length is already scaled).
@@ -52,7 +56,18 @@ struct RenderWater {
     float dx = 1, dz = 1;           ///< spacing, m
     std::vector<float> heights;     ///< nx·nz heights (world y), index j·nx + i, m
     Eigen::Vector3f colour = Eigen::Vector3f(0.12f, 0.36f, 0.62f);
-    float alpha = 0.72f;            ///< opacity (bodies below the surface stay visible)
+    /// Colour that what lies below the surface fades to with depth (and the bottom of open water), linear RGB 0..1.
+    Eigen::Vector3f deepColour = Eigen::Vector3f(0.05f, 0.21f, 0.34f);
+    float alpha = 0.9f;             ///< opacity seen at a grazing angle (far water)
+    float alphaFacing = 0.15f;      ///< opacity looking straight down (near water: bodies below it stay visible)
+    /// Depth below the mean surface over which submerged things fade 63 % towards `deepColour`, m; 0: 0.35 × the
+    /// camera distance.
+    float fogDepth = 0;
+    /// Crest shading at the frame's largest wave (0: none, 1: fully light and opaque): crests lighter and troughs
+    /// darker, both more opaque, by the square root of their height over the largest wave's, so that small ripples
+    /// (the rings of a splash) show.
+    float crestShading = 0.6f;
+    bool waterline = true;          ///< draw the waterline on the bodies (a light line where they cut the surface)
 };
 
 /// The static ground plane {p : normal · p = offset}.

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace buoyancy::render {
 
@@ -40,6 +41,31 @@ Eigen::Vector3f waterPoint(const btWaterFrame& f, const btVector3& p) {
     return f.toWaterPoint(Eigen::Vector3d(double(p.x()), double(p.y()), double(p.z()))).cast<float>();
 }
 
+/// Width / height of the pictures the automatic framing is made for (`buoyancy run --png`'s 16:9 sizes).
+constexpr double kPictureAspect = 16.0 / 9.0;
+
+/// The smallest eye–target distance at which every point, seen by `cam` (its target, yaw, pitch and vertical field
+/// of view), lies within kFillFraction of the picture's half-width and half-height from its centre, for a picture
+/// of width / height `aspect`; at least a tenth of the points' spread, so the eye stays outside them.
+double framingDistance(const RenderCamera& cam, const std::vector<Eigen::Vector3d>& points, double aspect) {
+    constexpr double kFillFraction = 0.6;
+    RenderCamera unit = cam;
+    unit.distance = 1.f;
+    const Eigen::Vector3d back = (unit.eye() - unit.target).cast<double>();  // unit vector, target → eye
+    const Eigen::Vector3d right = Eigen::Vector3d::UnitY().cross(back).normalized();
+    const Eigen::Vector3d up = back.cross(right);
+    const double tanY = kFillFraction * std::tan(0.5 * double(cam.fovDeg) * M_PI / 180.0), tanX = tanY * aspect;
+    const Eigen::Vector3d target = cam.target.cast<double>();
+    double d = 0, spread = 0;
+    for (const Eigen::Vector3d& p : points) {
+        const Eigen::Vector3d q = p - target;
+        spread = std::max(spread, q.norm());
+        // A point at depth (d − q·back) in front of the eye needs |q·right| ≤ tanX·depth and |q·up| ≤ tanY·depth.
+        d = std::max(d, q.dot(back) + std::max(std::abs(q.dot(right)) / tanX, std::abs(q.dot(up)) / tanY));
+    }
+    return std::max({d, 0.1 * spread, 0.05});
+}
+
 }  // namespace
 
 Eigen::Vector3f bodyColour(std::size_t index) {
@@ -50,33 +76,52 @@ Eigen::Vector3f bodyColour(std::size_t index) {
     return Eigen::Vector3f(c[0], c[1], c[2]);
 }
 
+Eigen::Vector3f wetColourOf(const Eigen::Vector3f& dry) {
+    // Darker and more saturated, the same hue: soaked paint, never the water's blue.
+    const float grey = dry.mean();
+    return (0.6f * (dry + 0.35f * (dry - Eigen::Vector3f::Constant(grey)))).cwiseMax(0.f).cwiseMin(1.f);
+}
+
 RenderCamera frameSceneCamera(const cli::Scene& scene, const cli::SceneWorld& world) {
     RenderCamera cam;
     const btWaterFrame& frame = waterFrameOf(world);
     const btTransform toWater = worldToWater(frame);
+    // The bodies' vertices in water coordinates (at most about kMaxPoints of them: a fleet is sampled).
+    constexpr std::size_t kMaxPoints = 20000;
+    std::size_t total = 0;
+    for (const auto& body : world.bodies) total += body->getShape()->getMesh().vertices.size();
+    const std::size_t stride = std::max<std::size_t>(1, total / kMaxPoints);
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(std::min(total, 2 * kMaxPoints));
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = Eigen::Vector3d::Constant(-1e300);
     for (const auto& body : world.bodies) {
         const btTransform t = toWater * body->getMeshWorldTransform();
-        const Eigen::Vector3d& c = body->getShape()->getBoundsCentre();
-        const btVector3 w = t(btVector3(btScalar(c.x()), btScalar(c.y()), btScalar(c.z())));
-        const double r = body->getShape()->getBoundsRadius();
-        for (int k = 0; k < 3; ++k) {
-            lo[k] = std::min(lo[k], double(w[k]) - r);
-            hi[k] = std::max(hi[k], double(w[k]) + r);
+        const auto& vertices = body->getShape()->getMesh().vertices;
+        for (std::size_t k = 0; k < vertices.size(); k += stride) {
+            const btVector3 w = t(btVector3(btScalar(vertices[k].x()), btScalar(vertices[k].y()), btScalar(vertices[k].z())));
+            const Eigen::Vector3d p(double(w.x()), double(w.y()), double(w.z()));
+            points.push_back(p);
+            lo = lo.cwiseMin(p);
+            hi = hi.cwiseMax(p);
         }
     }
-    if (world.bodies.empty()) lo = hi = Eigen::Vector3d(0, scene.waterHeight, 0);
+    if (points.empty()) {
+        lo = hi = Eigen::Vector3d(0, scene.waterHeight, 0);
+        points.push_back(lo);
+    }
     const Eigen::Vector3d centre = 0.5 * (lo + hi);
-    const double radius = std::max(0.5 * (hi - lo).norm(), 0.5);
     cam.target = centre.cast<float>();
-    cam.target.y() = float(0.5 * (centre.y() + scene.waterHeight));  // keep the waterline in view
+    // Keep the waterline in view when the bodies are near it.
+    const double radius = 0.5 * (hi - lo).norm();
+    const double waterY = scene.waterHeight;
+    if (std::abs(centre.y() - waterY) < radius + 0.5) cam.target.y() = float(0.5 * (centre.y() + waterY));
     cam.fovDeg = 40.f;
-    cam.distance = float(std::max(4.5, 1.0 * radius / std::sin(0.5 * cam.fovDeg * M_PI / 180.0)));
-    // The scene's "camera" block overrides what it gives.
-    if (scene.camera.target) cam.target = frame.toWaterPoint(*scene.camera.target).cast<float>();
-    if (scene.camera.distance) cam.distance = float(*scene.camera.distance);
+    // The scene's "camera" block overrides what it gives; a given yaw or pitch is used for the fit.
     if (scene.camera.yaw) cam.yawDeg = float(*scene.camera.yaw);
     if (scene.camera.pitch) cam.pitchDeg = float(*scene.camera.pitch);
+    if (scene.camera.target) cam.target = frame.toWaterPoint(*scene.camera.target).cast<float>();
+    cam.distance = float(framingDistance(cam, points, kPictureAspect));
+    if (scene.camera.distance) cam.distance = float(*scene.camera.distance);
     return cam;
 }
 
@@ -135,7 +180,11 @@ void buildSceneFrame(const cli::Scene& scene, const cli::SceneWorld& world, cons
         rb.mesh = &body.getShape()->getMesh();
         rb.meshToWorld = toMatrix(meshWorld);
         rb.colour = bodyColour(i);
-        rb.wetColour = 0.45f * rb.colour + Eigen::Vector3f(0.02f, 0.08f, 0.22f);
+        rb.wetColour = wetColourOf(rb.colour);
+        if (i < scene.bodies.size() && scene.bodies[i].shape.type == "sphere") {  // a ball's rotation shows
+            rb.twoTonePattern = true;
+            rb.patternCentre = body.getShape()->getBoundsCentre().cast<float>();
+        }
         out.bodies.push_back(rb);
 
         const btBuoyancyAction* action = i < world.actions.size() ? world.actions[i].get() : nullptr;

@@ -26,7 +26,10 @@ struct SceneFrameOptions {
                                  ///< water always uses its own extent)
 };
 
-/// A camera that frames every body of the world at its current position (the pictures keep it fixed).
+/// A camera that frames every body of the world at its current position (the pictures keep it fixed): it looks at
+/// the centre of the bodies' bounding box (pulled towards the water level when the bodies are near it) and moves in
+/// until their vertices fill about 60 % of a 16:9 picture's width or height. The scene's "camera" block overrides
+/// each field it gives; a given yaw or pitch is used for the fit.
 RenderCamera frameSceneCamera(const cli::Scene& scene, const cli::SceneWorld& world);
 
 /// Fill `out` from the world's current state (out.camera is kept: set it with frameSceneCamera or a UI).
@@ -35,5 +38,8 @@ void buildSceneFrame(const cli::Scene& scene, const cli::SceneWorld& world, cons
 
 /// The dry colour of body number `index` (a fixed palette), linear RGB 0..1.
 Eigen::Vector3f bodyColour(std::size_t index);
+
+/// The colour of a body's wet surface: its dry colour darker and more saturated (the same hue, never the water's).
+Eigen::Vector3f wetColourOf(const Eigen::Vector3f& dry);
 
 }  // namespace buoyancy::render

@@ -14,16 +14,18 @@ namespace buoyancy::render {
 
 namespace {
 
-// One program for everything; uMode picks body (wet/dry), plain, ground (checker) or water (specular).
+// One program for everything; uMode picks body (wet/dry), plain, ground (sea bed), water, arrow or deep-water plane.
 const char* kVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 aPos;
 uniform mat4 uModel;
 uniform mat4 uViewProj;
 uniform float uPointSize;
 out vec3 vWorld;
+out vec3 vLocal;
 void main() {
     vec4 w = uModel * vec4(aPos, 1.0);
     vWorld = w.xyz;
+    vLocal = aPos;
     gl_Position = uViewProj * w;
     gl_PointSize = uPointSize;
 }
@@ -31,18 +33,35 @@ void main() {
 
 const char* kFragmentShader = R"(#version 330 core
 in vec3 vWorld;
+in vec3 vLocal;
 out vec4 oColour;
 uniform vec3 uColour;
 uniform vec3 uWetColour;
 uniform float uAlpha;
-uniform int uMode;            // 0 body, 1 plain (unlit), 2 ground, 3 water, 4 arrow (lit, no wet test)
+uniform float uAlphaFacing;   // water: opacity looking straight down (uAlpha: at a grazing angle)
+uniform int uMode;            // 0 body, 1 plain (unlit), 2 ground, 3 water, 4 arrow (lit, no wet test), 5 deep plane
 uniform int uHasWater;
+uniform int uWaterline;       // 1: a light line where a body cuts the surface
+uniform int uTwoTone;         // 1: paint the body's lower half (mesh frame) white
+uniform vec3 uPatternCentre;  // mesh frame
 uniform sampler2D uHeights;   // water heights, texel (i, j) = sample (i, j) of the grid
 uniform vec4 uWaterGrid;      // x0, z0, dx, dz
 uniform vec2 uWaterSize;      // nx, nz
 uniform float uWaterMean;
+uniform float uCrest;         // 1 / the frame's largest wave height over the mean, 1/m (0: flat water, no crest shading)
+uniform float uCrestAmount;   // crest shading at the largest crest, 0..1
+uniform vec3 uDeepColour;
+uniform float uFogDepth;      // m
 uniform vec3 uLightDir;
 uniform vec3 uEye;
+
+float waterHeight(vec2 xz) {
+    vec2 g = (xz - uWaterGrid.xy) / uWaterGrid.zw;
+    vec2 uv = (g + 0.5) / uWaterSize;
+    return (g.x >= 0.0 && g.y >= 0.0 && g.x <= uWaterSize.x - 1.0 && g.y <= uWaterSize.y - 1.0)
+               ? texture(uHeights, uv).r : uWaterMean;
+}
+
 void main() {
     if (uMode == 1) { oColour = vec4(uColour, uAlpha); return; }
     vec3 n = normalize(cross(dFdx(vWorld), dFdy(vWorld)));
@@ -50,24 +69,38 @@ void main() {
     if (dot(n, toEye) < 0.0) n = -n;
     float diffuse = max(dot(n, uLightDir), 0.0);
     vec3 base = uColour;
-    if (uMode == 0 && uHasWater == 1) {
+    float depth = 0.0;  // below the water surface, m
+    bool onWaterline = false;
+    if ((uMode == 0 || uMode == 2) && uHasWater == 1) {
         // Wet when below the water height at this x, z (the rule of the samples, per pixel).
-        vec2 g = (vWorld.xz - uWaterGrid.xy) / uWaterGrid.zw;
-        vec2 uv = (g + 0.5) / uWaterSize;
-        float h = (g.x >= 0.0 && g.y >= 0.0 && g.x <= uWaterSize.x - 1.0 && g.y <= uWaterSize.y - 1.0)
-                      ? texture(uHeights, uv).r : uWaterMean;
-        if (vWorld.y < h) base = uWetColour;
+        float below = waterHeight(vWorld.xz) - vWorld.y;
+        if (uMode == 0) {
+            if (below > 0.0) base = uWetColour;
+            if (uTwoTone == 1 && vLocal.y < uPatternCentre.y) base = mix(base, vec3(0.97), below > 0.0 ? 0.5 : 0.85);
+            // The waterline: within about 1.5 pixels of the surface height.
+            float perPixel = max(fwidth(below), 1e-6);
+            onWaterline = uWaterline == 1 && abs(below) < 1.5 * perPixel;
+        }
+        depth = max(below, 0.0);
     }
-    if (uMode == 2) {
-        float c = mod(floor(vWorld.x) + floor(vWorld.z), 2.0);
-        base *= (c < 0.5) ? 1.0 : 0.86;
-    }
+    if (onWaterline) { oColour = vec4(0.97, 0.97, 0.93, 1.0); return; }
     vec3 colour = base * (0.38 + 0.62 * diffuse);
+    if (uMode == 5) colour = uDeepColour;
+    if ((uMode == 0 || uMode == 2) && depth > 0.0) colour = mix(colour, uDeepColour, 1.0 - exp(-depth / uFogDepth));
+    float alpha = uAlpha;
     if (uMode == 3) {
         vec3 h = normalize(uLightDir + toEye);
         colour += vec3(0.55) * pow(max(dot(n, h), 0.0), 80.0);
+        // Fresnel-like: clear looking down, opaque at a grazing angle.
+        alpha = mix(uAlphaFacing, uAlpha, pow(1.0 - max(dot(n, toEye), 0.0), 5.0));
+        // Crests light and troughs dark, both more opaque, so that ripples show over the clear near water.
+        // Height over the largest wave, square-rooted: small ripples far from a splash still show.
+        float relative = clamp((vWorld.y - uWaterMean) * uCrest, -1.0, 1.0);
+        float crest = sign(relative) * sqrt(abs(relative)) * uCrestAmount;
+        colour = crest > 0.0 ? mix(colour, vec3(0.72, 0.86, 0.97), 0.8 * crest) : colour * (1.0 + 0.6 * crest);
+        alpha = max(alpha, min(abs(crest), 1.0) * 0.75);
     }
-    oColour = vec4(colour, uAlpha);
+    oColour = vec4(colour, alpha);
 }
 )";
 
@@ -150,7 +183,9 @@ void unitArrow(std::vector<float>& xyz, std::vector<unsigned>& idx) {
 struct SceneRenderer::Impl {
     GLuint program = 0;
     GLint uModel = -1, uViewProj = -1, uPointSize = -1, uColour = -1, uWetColour = -1, uAlpha = -1, uMode = -1,
-          uHasWater = -1, uHeights = -1, uWaterGrid = -1, uWaterSize = -1, uWaterMean = -1, uLightDir = -1, uEye = -1;
+          uHasWater = -1, uHeights = -1, uWaterGrid = -1, uWaterSize = -1, uWaterMean = -1, uLightDir = -1, uEye = -1,
+          uAlphaFacing = -1, uWaterline = -1, uTwoTone = -1, uPatternCentre = -1, uCrest = -1, uDeepColour = -1,
+          uFogDepth = -1, uCrestAmount = -1;
     GpuMesh arrow, water, ground, points;
     int waterNx = 0, waterNz = 0;
     GLuint heightTexture = 0;
@@ -257,6 +292,14 @@ SceneRenderer::SceneRenderer() : m_impl(std::make_unique<Impl>()) {
     r.uWaterMean = loc("uWaterMean");
     r.uLightDir = loc("uLightDir");
     r.uEye = loc("uEye");
+    r.uAlphaFacing = loc("uAlphaFacing");
+    r.uWaterline = loc("uWaterline");
+    r.uTwoTone = loc("uTwoTone");
+    r.uPatternCentre = loc("uPatternCentre");
+    r.uCrest = loc("uCrest");
+    r.uCrestAmount = loc("uCrestAmount");
+    r.uDeepColour = loc("uDeepColour");
+    r.uFogDepth = loc("uFogDepth");
 
     std::vector<float> xyz;
     std::vector<unsigned> idx;
@@ -322,17 +365,30 @@ void SceneRenderer::draw(const RenderFrame& frame, int width, int height) {
     glUniform1i(r.uHeights, 0);
     glUniform1i(r.uHasWater, hasWater ? 1 : 0);
     float waterMean = 0;
+    const float fogDepth = w.fogDepth > 0 ? w.fogDepth : std::max(0.35f * cam.distance, 1e-3f);
+    glUniform1f(r.uFogDepth, fogDepth);
+    glUniform3f(r.uDeepColour, w.deepColour.x(), w.deepColour.y(), w.deepColour.z());
+    glUniform1i(r.uWaterline, w.waterline ? 1 : 0);
+    glUniform1i(r.uTwoTone, 0);
+    glUniform1f(r.uAlphaFacing, w.alphaFacing);
+    glUniform1f(r.uCrest, 0.f);
     if (hasWater) {
         double sum = 0;
         for (float h : w.heights) sum += h;
         waterMean = float(sum / double(w.heights.size()));
+        float largestWave = 0;
+        for (float h : w.heights) largestWave = std::max(largestWave, std::abs(h - waterMean));
         r.uploadWater(w, waterMean);
         glUniform4f(r.uWaterGrid, w.x0, w.z0, w.dx, w.dz);
         glUniform2f(r.uWaterSize, float(w.nx), float(w.nz));
         glUniform1f(r.uWaterMean, waterMean);
+        // Crest shading scaled to the largest wave of the frame; none on (nearly) flat water.
+        const float flat = 1e-3f * std::max(cam.distance, 1.f);
+        glUniform1f(r.uCrest, largestWave > flat ? 1.f / largestWave : 0.f);
+        glUniform1f(r.uCrestAmount, w.crestShading);
     }
 
-    // Ground: a large checkered quad on the plane, centred below the camera target.
+    // Ground: a large sandy quad on the plane, centred below the camera target, fading to deep water with depth.
     if (frame.ground.visible) {
         const Eigen::Vector3f n = frame.ground.normal.normalized();
         const Eigen::Vector3f c = cam.target - (n.dot(cam.target) - frame.ground.offset) * n;
@@ -352,6 +408,20 @@ void SceneRenderer::draw(const RenderFrame& frame, int width, int height) {
         glDrawElements(GL_TRIANGLES, r.ground.indexCount, GL_UNSIGNED_INT, nullptr);
     }
 
+    // Open water has a bottom: a deep-water plane well below the surface, so the translucent surface shows blue,
+    // not the sky, where nothing lies beneath it.
+    if (hasWater) {
+        Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+        const float half = 60.f + 40.f * cam.distance;
+        m(0, 0) = m(2, 2) = half;
+        m.block<3, 1>(0, 3) = Eigen::Vector3f(cam.target.x(), waterMean - 6.f * fogDepth, cam.target.z());
+        r.setModel(m);
+        glUniform1i(r.uMode, 5);
+        r.setColour(w.deepColour, 1.f);
+        glBindVertexArray(r.ground.vao);
+        glDrawElements(GL_TRIANGLES, r.ground.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+
     // Bodies, wet/dry per pixel.
     glUniform1i(r.uMode, 0);
     for (const RenderBody& body : frame.bodies) {
@@ -360,9 +430,12 @@ void SceneRenderer::draw(const RenderFrame& frame, int width, int height) {
         r.setModel(body.meshToWorld);
         r.setColour(body.colour, 1.f);
         glUniform3f(r.uWetColour, body.wetColour.x(), body.wetColour.y(), body.wetColour.z());
+        glUniform1i(r.uTwoTone, body.twoTonePattern ? 1 : 0);
+        glUniform3f(r.uPatternCentre, body.patternCentre.x(), body.patternCentre.y(), body.patternCentre.z());
         glBindVertexArray(g.vao);
         glDrawElements(GL_TRIANGLES, g.indexCount, GL_UNSIGNED_INT, nullptr);
     }
+    glUniform1i(r.uTwoTone, 0);
 
     // Sample points (wet blue, dry white), unlit.
     if (!frame.samples.positions.empty()) {
@@ -413,7 +486,7 @@ void SceneRenderer::draw(const RenderFrame& frame, int width, int height) {
         glDisable(GL_BLEND);
     }
 
-    // Arrows last, over a cleared depth buffer: visible through bodies and water, yet shaded correctly.
+    // Arrows last, over a cleared depth buffer: on top of bodies and water, yet each arrow shaded correctly.
     if (!frame.arrows.empty()) {
         glClear(GL_DEPTH_BUFFER_BIT);
         glUniform1i(r.uMode, 4);

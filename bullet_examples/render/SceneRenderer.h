@@ -2,9 +2,10 @@
 /// @file SceneRenderer.h
 /// OpenGL 3.3 core renderer of a RenderFrame: bodies lit with flat shading and coloured wet/dry per pixel
 /// (a point is wet when it lies below the water height at its x, z — the same rule as the samples, evaluated
-/// from the water grid uploaded as a height texture), the water surface as a translucent mesh, a checkered
-/// ground plane, force arrows drawn on top, optional sample points. Shared by `buoyancy run --png` (offscreen)
-/// and the scene browser (a window).
+/// from the water grid uploaded as a height texture) with the waterline drawn where they cut the surface; the
+/// water surface translucent looking down and opaque at a grazing angle, crests lighter and troughs darker;
+/// submerged things fading to the deep-water colour with depth; a plain sandy ground; force arrows drawn on top
+/// of everything; optional sample points. Shared by `buoyancy run --png` (offscreen) and the scene browser.
 
 #include "render/RenderFrame.h"
 

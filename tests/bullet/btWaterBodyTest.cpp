@@ -201,7 +201,7 @@ TEST_CASE("water bodies in a Z-up world: heights along +z, regions in world coor
     CHECK(std::abs(double(r.buoyancyForce.y())) < 1.0);
 }
 
-TEST_CASE("water bodies: straddling two equal waters is the one water; half over the edge is half the buoyancy",
+TEST_CASE("water bodies: straddling two equal waters is the one water, and half over the edge is half the buoyancy",
           "[bullet][waters]") {
     // Two regions side by side holding the same water (level 0.2 m, 1000 kg/m³): a body across them must get what one
     // unbounded water gives, pressure and drag (each drag cluster wet in the region its centre is in). And a body half

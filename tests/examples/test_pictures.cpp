@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -69,14 +70,14 @@ TEST_CASE("buoyancy run --size rejects bad sizes", "[examples]") {
 TEST_CASE("the browser starts under Xvfb, renders a scene and its screenshot shows water and the body", "[examples][slow]") {
     const fs::path d = scratch("browser");
     const fs::path png = d / "shot.png";
-    const std::string cmd = std::string(BUOYANCY_XVFB_RUN) + " -a -s '-screen 0 1024x480x24' " + BUOYANCY_BROWSER_PATH +
-                            " --scene 'Buoy in waves' --size 960 400 --frames 8 --screenshot " + png.string() +
+    const std::string cmd = std::string(BUOYANCY_XVFB_RUN) + " -a -s '-screen 0 1280x720x24' " + BUOYANCY_BROWSER_PATH +
+                            " --scene 'Buoy in waves' --size 1280 720 --frames 8 --screenshot " + png.string() +
                             " >/dev/null 2>&1";
     REQUIRE(shell(cmd) == 0);
     PictureStats s;
-    REQUIRE(buoyancy::test::analysePicture(png.string(), s, 400));  // right of the 380-pixel panel: the 3D view
-    CHECK(s.width == 960);
-    CHECK(s.height == 400);
+    REQUIRE(buoyancy::test::analysePicture(png.string(), s, 400));  // right of the panel: the 3D view
+    CHECK(s.width == 1280);
+    CHECK(s.height == 720);
     INFO("water " << s.waterLower << ", warm " << s.warm << ", colours " << s.distinctColours);
     CHECK(s.waterLower > 0.4);
     CHECK(s.warm > 30);
@@ -84,6 +85,27 @@ TEST_CASE("the browser starts under Xvfb, renders a scene and its screenshot sho
     PictureStats all;
     REQUIRE(buoyancy::test::analysePicture(png.string(), all));
     CHECK(all.distinctColours > s.distinctColours);  // the panel adds its own colours (text, buttons)
+
+    // The panel takes what it needs: the box around its dark-grey background (every channel below 48, within 10
+    // of each other; the scene has no such colour) covers at most 15 % of a 1280 × 720 window.
+    buoyancy::test::Picture p;
+    REQUIRE(p.load(png.string()));
+    int left = p.width, top = p.height, right = -1, bottom = -1;
+    for (int y = 0; y < p.height; ++y)
+        for (int x = 0; x < p.width; ++x) {
+            const Eigen::Vector3d c = p.at(x, y);
+            if (c.maxCoeff() < 48 && c.maxCoeff() - c.minCoeff() <= 10) {
+                left = std::min(left, x);
+                right = std::max(right, x);
+                top = std::min(top, y);
+                bottom = std::max(bottom, y);
+            }
+        }
+    REQUIRE(right >= left);
+    const double share = double(right - left + 1) * double(bottom - top + 1) / double(p.width * p.height);
+    INFO("panel box x " << left << ".." << right << ", y " << top << ".." << bottom << ": " << 100 * share << " % of the window");
+    CHECK(share <= 0.15);
+    CHECK(right < 400);  // the 3D view checked above starts right of it
     fs::remove_all(d);
 }
 #endif
