@@ -25,6 +25,13 @@
 using buoyancy::toBullet;
 using buoyancy::toEigen;
 
+/// Keeps a rarely taken branch out of line, so the common path's code is laid out as without it.
+#if defined(__GNUC__)
+#define BB_NOT_INLINED __attribute__((noinline))
+#else
+#define BB_NOT_INLINED
+#endif
+
 namespace {
 
 /// Drag clusters shared by every action of one shape at one dragClusters setting (built once: clustering a
@@ -447,7 +454,9 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     int waterBody = -1;
     bool straddling = false;
     double lo = 0, hi = 0;
-    if (bounded) {
+    // Out of line, so the single-water path's code is laid out as before water bodies (measured with callgrind: the
+    // inlined version cost the single-water path 0.2 % more instructions, this one 0.13 %).
+    const auto chooseWaterBody = [&]() BB_NOT_INLINED {
         const Eigen::Vector3d centreWorld = frame.toWorldPoint(bc);
         waterBody = m_world->findWaterBody(centreWorld, br, toEigen(m_body->getCenterOfMassPosition()));
         // (A deformable body's cut would need its deformed mesh: it takes the nearest region's water whole.)
@@ -475,6 +484,9 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         }
         water = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].surface : nullptr;
         m_activeDensity = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].fluidDensity : m_world->getFluidDensity();
+    };
+    if (bounded) {
+        chooseWaterBody();
     } else {
         m_activeDensity = m_world->getFluidDensity();
         m_straddling = false;
