@@ -42,11 +42,18 @@ public:
     void resetCamera() override;
 
 private:
+    /// One graphics shape and instance per body, from its triangle mesh in the rigid body's frame; the ground plane.
     void createBodyGraphics();
+    /// The water surface's mesh (the frame's height grid) and its translucent instance; none for air.
     void createWaterGraphics();
+    /// Refill m_waterVertices from the frame's water heights (world coordinates, normals from the height field).
     void updateWaterGraphics();
+    /// Re-upload the meshes whose RenderBody::meshVersion changed (the balloon).
     void updateDeformedBodies();
+    /// The frame's force arrows as lines (with heads) through the world's debug drawer.
     void drawArrows();
+    /// Unattended runs: BUOYANCY_EXAMPLE_FRAMES=N quits after N frames (printing a summary line),
+    /// BUOYANCY_EXAMPLE_PNG=FILE saves the last one.
     void frameLoopHook();
 
     buoyancy::examples::ExampleOptions m_sceneOptions;
