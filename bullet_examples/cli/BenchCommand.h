@@ -22,8 +22,9 @@ namespace buoyancy::cli {
 struct BenchOptions {
     bool quick = false;            ///< the reduced, fast set (smoke test)
     std::string out = "bench-results"; ///< output folder (created when missing)
-    /// which parts to run, comma-separated: speed (flat water), waves (the wave rows), fig9, scaling, lod (also: opencl)
-    std::string parts = "speed,waves,fig9,scaling,lod";
+    /// which parts to run, comma-separated: speed (flat water), waves (the wave rows), fig9, scaling, lod, primitives
+    /// (Bullet primitives in flat water; also: opencl)
+    std::string parts = "speed,waves,fig9,scaling,lod,primitives";
 };
 
 /// Register the `bench` subcommand on `app`.

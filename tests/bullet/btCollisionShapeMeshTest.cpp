@@ -6,6 +6,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btCollisionShapeMesh.h>
+#include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <BulletCollision/Gimpact/btGImpactShape.h>
@@ -289,4 +290,142 @@ TEST_CASE("your own btRigidBody: a btSphereShape in flat water gets the sphere's
     CHECK(double(r.buoyancyTorque.length()) < 1e-6 * double(r.buoyancyForce.length()));  // through the centre
     world.removeAction(&action);
     world.removeRigidBody(&body);
+}
+
+TEST_CASE("your own btRigidBody: a btBoxShape in flat water takes the exact box clip and moves as its mesh does",
+          "[bullet][shapes]") {
+    // The same tilted box dropped twice: once as a btBoxShape body (the action's constant-time box clip) and once
+    // through an explicit 12-triangle mesh of the same box (the general exact-mesh path). Both are exact, so the two
+    // trajectories may differ by rounding only.
+    const btVector3 half(0.5f, 0.2f, 0.4f);
+    btBoxShape box(half);
+    struct Run {
+        btDefaultCollisionConfiguration config;
+        btCollisionDispatcher dispatcher{&config};
+        btDbvtBroadphase broadphase;
+        btSequentialImpulseConstraintSolver solver;
+        btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+        btFlatWaterSurface water{0.0};
+        btBuoyancyWorld buoyancyWorld{&world, &water, 1000.0};
+    };
+    auto start = [&](Run& run, btRigidBody*& body) {
+        run.world.setGravity(btVector3(0, btScalar(-9.81), 0));
+        const btScalar mass = btScalar(0.45 * 1000 * 8 * 0.5 * 0.2 * 0.4);
+        btVector3 inertia;
+        box.calculateLocalInertia(mass, inertia);
+        btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, &box, inertia);
+        info.m_startWorldTransform.setOrigin(btVector3(0.1f, 0.3f, -0.2f));
+        info.m_startWorldTransform.setRotation(btQuaternion(btVector3(1, 0.3f, 0.5f).normalized(), btScalar(0.7)));
+        body = new btRigidBody(info);
+        body->setActivationState(DISABLE_DEACTIVATION);
+        run.world.addRigidBody(body);
+    };
+    Run fast, general;
+    btRigidBody* fastBody = nullptr;
+    btRigidBody* generalBody = nullptr;
+    start(fast, fastBody);
+    start(general, generalBody);
+    btBuoyancyAction fastAction(fastBody, &fast.buoyancyWorld);
+    REQUIRE(fastAction.getShape()->isBox());
+    CHECK(fastAction.getShape()->getBoxHalfExtents().isApprox(Eigen::Vector3d(0.5, 0.2, 0.4), 1e-6));
+    btBuoyancyAction generalAction(generalBody, btBuoyancyShape::create(buoyancy::makeBoxMesh(1.0, 0.4, 0.8)),
+                                   &general.buoyancyWorld);
+    REQUIRE_FALSE(generalAction.getShape()->isBox());
+    fast.world.addAction(&fastAction);
+    general.world.addAction(&generalAction);
+    double worst = 0, worstVolume = 0;
+    for (int frame = 0; frame < 60 * 2; ++frame) {
+        fast.world.stepSimulation(btScalar(1.0 / 60), 4, btScalar(1.0 / 240));
+        general.world.stepSimulation(btScalar(1.0 / 60), 4, btScalar(1.0 / 240));
+        worst = std::max(worst, double((fastBody->getCenterOfMassPosition() - generalBody->getCenterOfMassPosition()).length()));
+        worstVolume = std::max(worstVolume, std::abs(fastAction.getLastResult().submergedVolume -
+                                                     generalAction.getLastResult().submergedVolume));
+    }
+    INFO("largest position difference " << worst << " m, submerged volume difference " << worstVolume << " m3");
+    // Float Bullet keeps 7 digits: 2 s of rounding apart stays far below a millimetre; a wrong clip would be metres or
+    // centimetres off within the first second.
+    CHECK(worst < 1e-4);
+    CHECK(worstVolume < 1e-5);
+    CHECK(fastAction.getLastResult().submergedVolume > 0.1);
+    fast.world.removeAction(&fastAction);
+    general.world.removeAction(&generalAction);
+    fast.world.removeRigidBody(fastBody);
+    general.world.removeRigidBody(generalBody);
+    delete fastBody;
+    delete generalBody;
+}
+
+TEST_CASE("setBodyMassFromShape: mass and inertia of boxes, spheres and capsules in closed form", "[bullet][shapes]") {
+    btDefaultCollisionConfiguration config;
+    btCollisionDispatcher dispatcher(&config);
+    btDbvtBroadphase broadphase;
+    btSequentialImpulseConstraintSolver solver;
+    btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
+    world.setGravity(btVector3(0, btScalar(-9.81), 0));
+    btFlatWaterSurface water(0.0);
+    btBuoyancyWorld buoyancyWorld(&world, &water, 1000.0);
+    const double rho = 600;
+    auto bodyOf = [&](btCollisionShape& shape) {
+        btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, &shape, btVector3(1, 1, 1));
+        return std::make_unique<btRigidBody>(info);
+    };
+    SECTION("box") {
+        btBoxShape box(btVector3(0.5f, 0.2f, 0.4f));
+        auto body = bodyOf(box);
+        btBuoyancyAction action(body.get(), &buoyancyWorld);
+        const btBuoyancyMassResult r = action.setBodyMassFromShape(rho);
+        const double a = 1.0, b = 0.4, c = 0.8, m = rho * a * b * c;
+        CHECK(r.mass == Approx(m).epsilon(1e-6));
+        CHECK(1.0 / double(body->getInvMass()) == Approx(m).epsilon(1e-6));
+        CHECK(double(body->getLocalInertia().x()) == Approx(m * (b * b + c * c) / 12).epsilon(1e-5));
+        CHECK(double(body->getLocalInertia().y()) == Approx(m * (a * a + c * c) / 12).epsilon(1e-5));
+        CHECK(double(body->getLocalInertia().z()) == Approx(m * (a * a + b * b) / 12).epsilon(1e-5));
+        CHECK(r.centroidOffset.length() < 1e-6);
+        CHECK(r.productOfInertiaRatio < 1e-6);
+    }
+    SECTION("sphere") {
+        btSphereShape sphere{btScalar(0.5)};
+        auto body = bodyOf(sphere);
+        btBuoyancyAction action(body.get(), &buoyancyWorld);
+        action.setBodyMassFromShape(rho);
+        const double m = rho * 4.0 / 3.0 * kPi * 0.125;
+        CHECK(1.0 / double(body->getInvMass()) == Approx(m).epsilon(1e-6));
+        for (int k = 0; k < 3; ++k) CHECK(double(body->getLocalInertia()[k]) == Approx(0.4 * m * 0.25).epsilon(1e-6));
+    }
+    SECTION("capsule along z") {
+        const double r = 0.25, h = 1.0;  // radius, cylinder length
+        btCapsuleShapeZ capsule{btScalar(r), btScalar(h)};
+        auto body = bodyOf(capsule);
+        btBuoyancyAction action(body.get(), &buoyancyWorld);
+        action.setBodyMassFromShape(rho);
+        // Cylinder plus two hemispheres, each hemisphere about its own centroid 3r/8 from its flat face:
+        // (83/320) m_h r² across, then moved to the capsule's centre (parallel-axis theorem).
+        const double mc = rho * kPi * r * r * h, ms = rho * 4.0 / 3.0 * kPi * r * r * r;
+        const double axial = mc * r * r / 2 + 0.4 * ms * r * r;
+        const double across = mc * (3 * r * r + h * h) / 12 +
+                              2 * (83.0 / 320.0 * (ms / 2) * r * r + (ms / 2) * std::pow(h / 2 + 3 * r / 8, 2));
+        // The capsule floats as its tessellation at the default curvedShapeTolerance (0.1 % of the volume).
+        CHECK(1.0 / double(body->getInvMass()) == Approx(mc + ms).epsilon(1e-3));
+        CHECK(double(body->getLocalInertia().z()) == Approx(axial).epsilon(3e-3));
+        CHECK(double(body->getLocalInertia().x()) == Approx(across).epsilon(3e-3));
+        CHECK(double(body->getLocalInertia().y()) == Approx(across).epsilon(3e-3));
+    }
+    SECTION("cone: the centroid off Bullet's origin is reported") {
+        const double r = 0.4, h = 1.2;
+        btConeShape cone{btScalar(r), btScalar(h)};  // along y, origin half-way up
+        auto body = bodyOf(cone);
+        btBuoyancyAction action(body.get(), &buoyancyWorld);
+        const btBuoyancyMassResult res = action.setBodyMassFromShape(rho);
+        CHECK(res.mass == Approx(rho * kPi * r * r * h / 3).epsilon(1e-3));
+        // A cone's centroid lies a quarter of its height above its base, the base h/2 below Bullet's origin.
+        CHECK(double(res.centroidOffset.y()) == Approx(-h / 4).epsilon(3e-3));
+    }
+    SECTION("bad density") {
+        btBoxShape box(btVector3(0.5f, 0.2f, 0.4f));
+        auto body = bodyOf(box);
+        btBuoyancyAction action(body.get(), &buoyancyWorld);
+        CHECK_THROWS_WITH(action.setBodyMassFromShape(0.0), Contains("density"));
+        CHECK_THROWS_WITH(action.setBodyMassFromShape(std::nan("")), Contains("density"));
+        CHECK(1.0 / double(body->getInvMass()) == Approx(1.0));  // unchanged
+    }
 }

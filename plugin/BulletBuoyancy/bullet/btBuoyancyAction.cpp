@@ -3,6 +3,7 @@
 #include <BulletBuoyancy/bullet/btBulletConvert.h>
 #include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
 #include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>
+#include <BulletBuoyancy/integrals/BoxHydrostatics.h>
 #include <BulletBuoyancy/integrals/SphereHydrostatics.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
@@ -178,6 +179,43 @@ buoyancy::WaterRegion btBuoyancyAction::regionOf(const btWaterBody& body) const 
 
 btTransform btBuoyancyAction::getMeshInComFrame() const {
     return m_owner ? m_owner->getMeshInComFrame() : m_meshInCom;
+}
+
+btBuoyancyMassResult btBuoyancyAction::setBodyMassFromShape(double density) {
+    if (!std::isfinite(density) || !(density > 0))
+        throw std::invalid_argument("setBodyMassFromShape: density must be finite and > 0 kg/m3 (got " +
+                                    std::to_string(density) + ")");
+    if (m_owner)
+        throw std::invalid_argument("setBodyMassFromShape: a btBuoyantBody keeps its own mass properties "
+                                    "(btBuoyantBody::updateMassProperties)");
+    // The solid at unit density (mass = volume) in the mesh frame; a sphere's in closed form (its mesh is a
+    // tessellation, 0.1 % short at the default tolerance).
+    buoyancy::MassProperties unit = m_shape->getUnitSolid();
+    if (const double R = m_shape->getSphereRadius(); R > 0) {
+        constexpr double kPi = 3.14159265358979323846;
+        unit.volume = unit.mass = 4.0 / 3.0 * kPi * R * R * R;
+        unit.centre.setZero();
+        unit.inertia = Eigen::Matrix3d::Identity() * (0.4 * unit.mass * R * R);
+    }
+    const Eigen::Isometry3d meshInCom = toEigen(getMeshInComFrame());
+    const double mass = density * unit.volume;
+    const Eigen::Vector3d c = meshInCom * unit.centre;  // centroid, body frame
+    // About the centroid in body axes, then moved to the frame's origin (parallel-axis theorem): Bullet turns the body
+    // about that origin.
+    Eigen::Matrix3d I = meshInCom.linear() * (density * unit.inertia) * meshInCom.linear().transpose();
+    I += mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    btBuoyancyMassResult r;
+    r.mass = mass;
+    r.localInertia = btVector3(btScalar(I(0, 0)), btScalar(I(1, 1)), btScalar(I(2, 2)));
+    r.centroidOffset = toBullet(c);
+    const double smallest = std::max(I.diagonal().minCoeff(), 1e-300);
+    r.productOfInertiaRatio = std::max({std::abs(I(0, 1)), std::abs(I(0, 2)), std::abs(I(1, 2))}) / smallest;
+    if (const std::string range = btBuoyancyCheckInertiaRange(r.localInertia, "setBodyMassFromShape"); !range.empty())
+        throw std::invalid_argument(range);
+    m_body->setMassProps(btScalar(mass), r.localInertia);
+    m_body->updateInertiaTensor();
+    m_body->activate(true);
+    return r;
 }
 
 void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy::WaterPatch* patch,
@@ -591,6 +629,9 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
             } else if (flat && m_shape->getSphereRadius() > 0 && !m_deformable) {
                 // A btSphereShape in flat water: the cap in closed form (design.md 2.5 "Spheres in flat water").
                 h = buoyancy::sphereHydrostatics(pose.translation(), m_shape->getSphereRadius(), flatH, rho, g, com);
+            } else if (flat && m_shape->isBox() && !m_deformable) {
+                // A btBoxShape in flat water: its exact clip in constant time (design.md 2.5 "Boxes in flat water").
+                h = buoyancy::boxHydrostatics(pose, m_shape->getBoxHalfExtents(), flatH, rho, g, com);
             } else if (flat && bc.y() + br <= flatH && !m_deformable) {
                 h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (design.md 2.5)
             } else if (method == btBuoyancyMethod::ExactMesh) {

@@ -56,6 +56,16 @@ struct btBuoyancyResult {
 /// Internal (btBuoyancyWorld's batch): evaluate `action`'s body for the current substep of its world (dt, s).
 void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* collisionWorld, double dt);
 
+/// What btBuoyancyAction::setBodyMassFromShape set, and how exactly Bullet's diagonal inertia represents the solid.
+struct btBuoyancyMassResult {
+    double mass = 0;                              ///< ρ V, kg
+    btVector3 localInertia{0, 0, 0};              ///< the diagonal handed to setMassProps, kg·m² (body axes)
+    btVector3 centroidOffset{0, 0, 0};            ///< the solid's centroid in the body's centre-of-mass frame, m
+    /// Largest product of inertia over the smallest principal moment (0 when the body axes are principal): what the
+    /// diagonal leaves out, dimensionless.
+    double productOfInertiaRatio = 0;
+};
+
 /// Buoyancy of one rigid body in the water of a btBuoyancyWorld.
 class btBuoyancyAction : public btActionInterface {
 public:
@@ -85,6 +95,18 @@ public:
     void updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) override;
     /// Draws the buoyancy force at the centre of buoyancy and the drag force at the COM (1 m per m·g).
     void debugDraw(btIDebugDraw* debugDrawer) override;
+
+    /// Set the body's mass and inertia from the buoyancy geometry at a uniform `density` (kg/m³, finite, > 0):
+    /// mass ρ V; inertia the solid's exact tensor (a btSphereShape's 2/5 m R² in closed form, every other shape from
+    /// its exact mesh integrals), taken about the body's centre-of-mass frame origin and expressed in its axes,
+    /// whose diagonal is handed to btRigidBody::setMassProps (Bullet's own calculateLocalInertia takes most shapes
+    /// for their bounding box: a sphere's inertia 2.5× too large, a capsule's or a cone's far off). The body is
+    /// activated and its world inertia updated. Exact when the solid's centroid is the frame's origin and its axes
+    /// are principal (boxes, spheres, capsules, cylinders, multi-spheres of symmetric layout, btBuoyantBody's bodies);
+    /// otherwise the result says by how much it is not (a btConeShape's centroid lies a quarter of its height below
+    /// Bullet's origin: shift the shape in a btCompoundShape to make it exact).
+    /// @throws std::invalid_argument for a density that is not finite and positive (body unchanged)
+    btBuoyancyMassResult setBodyMassFromShape(double density);
 
     /// Result of the last substep.
     const btBuoyancyResult& getLastResult() const { return m_result; }

@@ -4,6 +4,7 @@
 #include <BulletBuoyancy/mesh/MeshImport.h>
 #include <BulletBuoyancy/mesh/MeshRepair.h>
 
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
 #include <BulletBuoyancy/atlas/UvLayout.h>
@@ -72,10 +73,15 @@ std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::fromCollisionShape(const
                                                                            const btBuoyancySettings& settings) {
     settings.validate();
     std::shared_ptr<const btBuoyancyShape> made = create(btCollisionShapeToMesh(shape, settings.curvedShapeTolerance), settings);
+    // Not shared with anyone yet: the one place a shape is completed after create().
     if (shape.getShapeType() == SPHERE_SHAPE_PROXYTYPE) {
-        // Not shared with anyone yet: the one place a shape is completed after create().
         std::const_pointer_cast<btBuoyancyShape>(made)->m_sphereRadius =
             double(static_cast<const btSphereShape&>(shape).getRadius());
+    } else if (shape.getShapeType() == BOX_SHAPE_PROXYTYPE) {
+        // The same extents btCollisionShapeToMesh built the mesh from (Bullet keeps the margin inside them).
+        const btVector3 h = static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin();
+        std::const_pointer_cast<btBuoyancyShape>(made)->m_boxHalfExtents =
+            Eigen::Vector3d(double(h.x()), double(h.y()), double(h.z()));
     }
     return made;
 }

@@ -66,6 +66,12 @@ public:
     /// its hydrostatics are then the sphere's cap in closed form (exact, constant time) instead of its tessellation;
     /// 0 for every other shape.
     double getSphereRadius() const { return m_sphereRadius; }
+    /// For the shape of a btBoxShape: its half extents along the mesh frame's axes, m (the box is centred at the mesh
+    /// origin); in flat water its hydrostatics are then the box's exact clip (buoyancy::boxHydrostatics) in constant
+    /// time instead of the mesh path. Zero for every other shape.
+    const Eigen::Vector3d& getBoxHalfExtents() const { return m_boxHalfExtents; }
+    /// True for the shape of a btBoxShape (getBoxHalfExtents() is then positive).
+    bool isBox() const { return m_boxHalfExtents.x() > 0; }
     /// True when the samples were baked through an atlas the library generated (the model's UVs were missing or
     /// unusable); false for the model's own UVs and for ExactMesh (no texture).
     bool usesGeneratedUvs() const { return m_uvGenerated; }
@@ -89,6 +95,7 @@ private:
     Eigen::Vector3d m_boundsCentre = Eigen::Vector3d::Zero();
     double m_boundsRadius = 0;
     double m_sphereRadius = 0;
+    Eigen::Vector3d m_boxHalfExtents = Eigen::Vector3d::Zero();
     bool m_uvGenerated = false;
     std::vector<std::string> m_uvProblems;
     std::vector<buoyancy::MeshWarning> m_meshWarnings;
