@@ -409,11 +409,14 @@ void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* c
 }
 
 void btBuoyancyAction::applyPending() {
+    m_result.linearImpulse = m_result.angularImpulse = btVector3(0, 0, 0);
     if (m_pendingActivate) m_body->activate();
     if (m_pendingSleep) m_body->setSleepingThresholds(m_pendingLinearSleep, m_pendingAngularSleep);
     if (m_pendingImpulse) {
         m_body->applyCentralImpulse(m_pendingJ);
         m_body->applyTorqueImpulse(m_pendingL);
+        m_result.linearImpulse = m_pendingJ;
+        m_result.angularImpulse = m_pendingL;
         m_result.applied = true;
         m_needsPrime = false;
         BT_BUOYANCY_CHECK_BODY(*m_body);
@@ -438,7 +441,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
 #endif
     m_result.applied = false;
     // A body removed from its world while this action stays in it: do nothing until it is back.
-    if (!m_body->getBroadphaseHandle()) return;
+    if (!m_body->getBroadphaseHandle() && !m_outsideWorld) return;
     // The unbounded water, or water bodies (btBuoyancyWorld::addWaterBody): chosen below, once the pose is known.
     const btWaterSurface* water = m_world->getWater();
     const std::vector<btWaterBody>& waterBodies = m_world->getWaterBodies();

@@ -45,6 +45,11 @@ struct btBuoyancyResult {
     double waterlineArea = 0;                   ///< m²
     double addedMass = 0;                       ///< m_a applied this substep, kg
     double time = 0;                            ///< water time of the evaluation, s
+    /// The linear impulse applied at the centre of mass this substep (buoyancy, drag and added mass together; zero
+    /// when nothing was applied), N·s.
+    btVector3 linearImpulse = btVector3(0, 0, 0);
+    /// The angular impulse applied this substep, N·m·s.
+    btVector3 angularImpulse = btVector3(0, 0, 0);
     bool applied = false;                       ///< false when nothing was applied (dry, asleep, rejected)
     /// The hydrostatic fields were predicted from earlier exact evaluations, not evaluated at this substep
     /// (btBuoyancySettings::hydrostaticsInterval > 1; btHydrostaticsHistory).
@@ -147,6 +152,7 @@ public:
     ///@}
 
 private:
+    friend class btBuoyancyImmediate;  // steps a body that is in no Bullet world (m_outsideWorld)
     friend void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* collisionWorld, double dt);
     /// Everything of a substep that reads the body and writes only this action's state: the water, hydrostatics,
     /// drag, the temporal level of detail and the decisions; what it would write into the body is kept for
@@ -191,6 +197,7 @@ private:
     const btBuoyantBody* m_owner = nullptr;
     btBuoyancySettings m_settings;
     btTransform m_meshInCom;
+    bool m_outsideWorld = false;  ///< immediate mode: the body need not be in a Bullet world
     btBuoyancyResult m_result;
     std::uint64_t m_lastSubstep = 0;
     /// @name What evaluate decided for the body, written by applyPending (at the action's turn in Bullet's order)

@@ -206,6 +206,7 @@ public:
     void unregisterAction(btBuoyancyAction* action);
 
 private:
+    friend class btBuoyancyImmediate;  // sets the gravity vector of its private context
     /// Read gravity (m/s², world frame) into m_gravity and m_gravityStatus.
     void followGravity(double gx, double gy, double gz);
     /// Evaluate every registered action that is in `from`'s action array (the batch), across the threads.
