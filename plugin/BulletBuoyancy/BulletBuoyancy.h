@@ -15,6 +15,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
 #include <BulletBuoyancy/bullet/btBuoyancyImmediate.h>
+#include <BulletBuoyancy/bullet/btBuoyancyMultiBodyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>

@@ -1,0 +1,120 @@
+#include <BulletBuoyancy/bullet/btBuoyancyMultiBodyAction.h>
+
+#include <BulletBuoyancy/bullet/btBuoyancyImmediate.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+/// One floating part: its collider, a stand-in rigid body that mirrors its pose, velocity, mass and inertia for the
+/// shared per-body evaluation, and that evaluation's state.
+struct btBuoyancyMultiBodyAction::Part {
+    int link = -1;  ///< −1: the base
+    btMultiBodyLinkCollider* collider = nullptr;
+    std::unique_ptr<btRigidBody> proxy;
+    std::unique_ptr<btBuoyancyImmediate> buoyancy;
+};
+
+btBuoyancyMultiBodyAction::btBuoyancyMultiBodyAction(btMultiBody* multiBody, btBuoyancyWorld* world,
+                                                     const btBuoyancySettings& settings)
+    : m_multiBody(multiBody), m_world(world) {
+    if (!multiBody) throw std::invalid_argument("btBuoyancyMultiBodyAction: multiBody is null");
+    if (!world) throw std::invalid_argument("btBuoyancyMultiBodyAction: world is null");
+    btBuoyancySettings partSettings = settings;
+    partSettings.addedMass = false;
+    partSettings.validate();
+    for (int link = -1; link < multiBody->getNumLinks(); ++link) {
+        btMultiBodyLinkCollider* collider = link < 0 ? multiBody->getBaseCollider() : multiBody->getLinkCollider(link);
+        if (!collider || !collider->getCollisionShape()) continue;
+        const std::string name = link < 0 ? std::string("base") : "link " + std::to_string(link);
+        const double mass = double(link < 0 ? multiBody->getBaseMass() : multiBody->getLinkMass(link));
+        const btVector3 inertia = link < 0 ? multiBody->getBaseInertia() : multiBody->getLinkInertia(link);
+        const bool fixedPart = link < 0 && multiBody->hasFixedBase();
+        if (!fixedPart && !(mass > 0))
+            throw std::invalid_argument("btBuoyancyMultiBodyAction: " + name + " has mass " + std::to_string(mass) +
+                                        " kg: a floating part needs a positive mass");
+        auto part = std::make_unique<Part>();
+        part->link = link;
+        part->collider = collider;
+        btRigidBody::btRigidBodyConstructionInfo info(btScalar(fixedPart ? 0.0 : mass), nullptr,
+                                                      collider->getCollisionShape(), fixedPart ? btVector3(0, 0, 0) : inertia);
+        info.m_startWorldTransform = collider->getWorldTransform();
+        part->proxy = std::make_unique<btRigidBody>(info);
+        part->proxy->setActivationState(DISABLE_DEACTIVATION);
+        try {
+            part->buoyancy = std::make_unique<btBuoyancyImmediate>(part->proxy.get(), partSettings);
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument("btBuoyancyMultiBodyAction: " + name + ": " + e.what());
+        }
+        m_parts.push_back(std::move(part));
+    }
+    if (m_parts.empty())
+        throw std::invalid_argument("btBuoyancyMultiBodyAction: the multibody has no collider on its base or links "
+                                    "(each floating part floats with its collider's shape)");
+}
+
+btBuoyancyMultiBodyAction::~btBuoyancyMultiBodyAction() = default;
+
+const btBuoyancyResult* btBuoyancyMultiBodyAction::getPartResult(int link) const {
+    for (const auto& p : m_parts)
+        if (p->link == link) return &p->buoyancy->getAction().getLastResult();
+    return nullptr;
+}
+
+double btBuoyancyMultiBodyAction::getSubmergedVolume() const {
+    double v = 0;
+    for (const auto& p : m_parts) v += p->buoyancy->getAction().getLastResult().submergedVolume;
+    return v;
+}
+
+void btBuoyancyMultiBodyAction::updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) {
+    const double dt = double(deltaTimeStep);
+    if (!(dt > 0) || !std::isfinite(dt)) return;
+    // The world's clock and gravity advance once per substep, whoever calls first.
+    m_world->beginSubstepIfNew(m_lastSubstep, dt, collisionWorld);
+    const btWaterSurface* water = m_world->getWater();
+    btMultiBody& mb = *m_multiBody;
+    if (!water || !mb.isAwake()) return;
+    const Eigen::Vector3d& gv = m_world->getGravityVector();
+    const btVector3 gravity(btScalar(gv.x()), btScalar(gv.y()), btScalar(gv.z()));
+    const double time = m_world->getTime(), rho = m_world->getFluidDensity();
+
+    // Every part's velocity at its centre of mass (the link frame's origin), from the joint velocities.
+    const int links = mb.getNumLinks();
+    m_omega.resize(links + 1);
+    m_velocity.resize(links + 1);
+    mb.compTreeLinkVelocities(&m_omega[0], &m_velocity[0]);
+    const int dofs = 6 + mb.getNumDofs();
+    m_force.resize(dofs);
+    for (int i = 0; i < dofs; ++i) m_force[i] = 0;
+    m_jacobian.resize(dofs);
+    bool any = false;
+    for (const auto& part : m_parts) {
+        btRigidBody& proxy = *part->proxy;
+        const btTransform& pose = part->collider->getWorldTransform();
+        proxy.setWorldTransform(pose);
+        proxy.setLinearVelocity(pose.getBasis() * m_velocity[part->link + 1]);
+        proxy.setAngularVelocity(pose.getBasis() * m_omega[part->link + 1]);
+        proxy.updateInertiaTensor();
+        if (part->link < 0 && mb.hasFixedBase()) continue;  // a fixed base takes what it is given
+        if (!part->buoyancy->getContext().isWaterFrameFixed() && m_world->isWaterFrameFixed())
+            part->buoyancy->getContext().setWaterFrame(m_world->getWaterFrame());
+        const btBuoyancyResult& r = part->buoyancy->applyBuoyancyImpulse(*water, gravity, rho, time, dt);
+        if (!r.applied) continue;
+        // The generalized impulse of the spatial impulse (angular L, linear J at the centre of mass): the Jacobian of
+        // the direction (L, J) is linear in it and its product with the joint velocities is the power, so Jᵀ·1.
+        mb.fillConstraintJacobianMultiDof(part->link, pose.getOrigin(), r.angularImpulse, r.linearImpulse, &m_jacobian[0],
+                                         m_scratchR, m_scratchV, m_scratchM);
+        for (int i = 0; i < dofs; ++i) m_force[i] += m_jacobian[i];
+        any = true;
+    }
+    if (!any) return;
+    m_deltaV.resize(dofs);
+    mb.calcAccelerationDeltasMultiDof(&m_force[0], &m_deltaV[0], m_scratchR, m_scratchV);
+    mb.applyDeltaVeeMultiDof(&m_deltaV[0], 1);
+}
