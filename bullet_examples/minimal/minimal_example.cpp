@@ -1,5 +1,5 @@
-// The smallest complete use of BulletBuoyancy (shown in README.md): load a mesh, make its body and its
-// buoyancy action, step a Bullet world, read the result. Usage: minimal_example [MESH] (default: a 1 m box).
+// The smallest complete use of BulletBuoyancy (shown in README.md): your own btRigidBody with its btBoxShape, the
+// water, one action; step the Bullet world, read the result.
 #include <BulletBuoyancy/BulletBuoyancy.h>
 
 #include <btBulletDynamicsCommon.h>
@@ -7,42 +7,35 @@
 #include <cmath>
 #include <cstdio>
 
-int main(int argc, char** argv) {
-    // 1. A Bullet world as usual.
+int main() {
+    // 1. A Bullet world and a body, as usual: a 1 m box dropped from 1 m.
     btDefaultCollisionConfiguration config;
     btCollisionDispatcher dispatcher(&config);
     btDbvtBroadphase broadphase;
     btSequentialImpulseConstraintSolver solver;
     btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
     world.setGravity(btVector3(0, -9.81, 0));
+    btBoxShape box(btVector3(0.5, 0.5, 0.5));
+    btRigidBody body(btRigidBody::btRigidBodyConstructionInfo(1, nullptr, &box));
+    body.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, 1, 0)));
+    world.addRigidBody(&body);
 
-    // 2. The water (any btWaterSurface) and the per-world buoyancy context: fresh water, the world's gravity.
+    // 2. The water (any btWaterSurface), the world's buoyancy context (fresh water, the world's gravity) and the
+    //    body's action: its geometry is the body's collision shape.
     btFlatWaterSurface water(0.0);
     btBuoyancyWorld buoyancyWorld(&world, &water, 1000.0);
-
-    // 3. A closed mesh (untrusted files belong in a child process: see bullet_examples/scene/ChildProcessImport.h).
-    buoyancy::TriangleMesh mesh = argc > 1 ? buoyancy::importMeshFile(argv[1]) : buoyancy::makeBoxMesh(1, 1, 1);
-    buoyancy::prepareMesh(mesh, argc > 1 ? argv[1] : "box");
-    auto shape = btBuoyancyShape::create(std::move(mesh));  // samples + mass properties, shareable
-
-    // 4. The rigid body (balsa: 150 kg/m^3) dropped from 1 m, and its action.
-    btBuoyantBodySettings bodySettings;
-    bodySettings.density = 150;
-    btBuoyantBody body(shape, bodySettings, btTransform(btQuaternion::getIdentity(), btVector3(0, 1, 0)));
-    world.addRigidBody(body.getRigidBody());
-    btBuoyancyAction action(body, &buoyancyWorld);
+    btBuoyancyAction action(&body, &buoyancyWorld);
+    action.setBodyMassFromShape(150);  // balsa, kg/m^3: mass and exact inertia of the box
     world.addAction(&action);
 
-    // 5. Step: 60 Hz frames of four 240 Hz substeps.
+    // 3. Step: 60 Hz frames of four 240 Hz substeps.
     for (int frame = 0; frame < 60 * 20; ++frame) world.stepSimulation(1.0 / 60, 4, 1.0 / 240);
 
-    const btTransform pose = body.getMeshWorldTransform();
     const btBuoyancyResult& r = action.getLastResult();
-    std::printf("after 20 s: mesh origin at y = %.4f m, submerged volume %.4f m^3 (%.1f %% of the body)\n",
-                double(pose.getOrigin().y()), r.submergedVolume, 100 * r.submergedVolume / shape->getVolume());
-
+    std::printf("after 20 s: centre at y = %.4f m, submerged volume %.4f m^3\n",
+                double(body.getCenterOfMassPosition().y()), r.submergedVolume);
     world.removeAction(&action);
-    world.removeRigidBody(body.getRigidBody());
+    world.removeRigidBody(&body);
     // A body of 150 kg/m^3 floats with 15 % of its volume under water (Archimedes).
-    return std::fabs(r.submergedVolume / shape->getVolume() - 0.15) < 0.005 ? 0 : 1;
+    return std::fabs(r.submergedVolume - 0.15) < 0.005 ? 0 : 1;
 }

@@ -473,6 +473,15 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // Everything below is evaluated in the water frame (btWaterFrame: the surface is y = f(x, z, t) there); the
     // impulses and the result are mapped back to the world at the end. Identity for a +y-up world.
     const btWaterFrame& frame = m_world->getWaterFrame();
+    if (m_frameVersion != m_world->getWaterFrameVersion()) {  // a new frame: records and caches of the old one go
+        m_frameVersion = m_world->getWaterFrameVersion();
+        m_history.clear();
+        m_hasLastCom = false;
+        m_waterCache.reset();
+        m_dragCache.reset();
+        m_probeCache.reset();
+        m_patchCache.reset();
+    }
     const Eigen::Isometry3d pose = frame.toWater(toEigen(m_body->getWorldTransform() * getMeshInComFrame()));
     const Eigen::Vector3d com = frame.toWaterPoint(toEigen(m_body->getCenterOfMassPosition()));
     // A NaN/Inf pose (set by the user, or a body Bullet already lost) is refused here: nothing below may

@@ -197,6 +197,7 @@ private:
     const btBuoyantBody* m_owner = nullptr;
     btBuoyancySettings m_settings;
     btTransform m_meshInCom;
+    std::uint64_t m_frameVersion = 0;  ///< the world's water-frame version the records were made in
     bool m_outsideWorld = false;  ///< immediate mode: the body need not be in a Bullet world
     btBuoyancyResult m_result;
     std::uint64_t m_lastSubstep = 0;

@@ -92,6 +92,7 @@ void btBuoyancyWorld::setWaterFrame(const btWaterFrame& frame) {
     }
     m_frame = frame;
     m_frameFixed = true;
+    ++m_frameVersion;
     if (m_gravityKnown) followGravity(m_gravityVector.x(), m_gravityVector.y(), m_gravityVector.z());  // the status
 }
 
@@ -120,6 +121,7 @@ void btBuoyancyWorld::followGravity(double gx, double gy, double gz) {
     if (!m_frameFixed) {
         m_frame = btWaterFrame::fromGravity(m_gravityVector);
         m_frameFixed = true;
+        ++m_frameVersion;
     }
     if (!(m_frame.angleToGravity(m_gravityVector) <= kGravityAngleTolerance)) {
         m_gravity = 0.0;

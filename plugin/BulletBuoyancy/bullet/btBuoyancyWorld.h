@@ -126,6 +126,9 @@ public:
     /// True when the frame was set explicitly or derived from a gravity already (false: it is still the default
     /// y-up frame waiting for the first non-zero gravity).
     bool isWaterFrameFixed() const { return m_frameFixed; }
+    /// Counts the changes of the water frame (set explicitly or derived from gravity): what an action evaluated in
+    /// the old frame (its temporal level-of-detail records, water-query caches) is dropped when it changes.
+    std::uint64_t getWaterFrameVersion() const { return m_frameVersion; }
     ///@}
     /// Set g, m/s², for actions stepped without a dynamics world; overwritten at the next substep by the gravity of
     /// the world the actions are stepped in. @throws std::invalid_argument for a negative or non-finite value
@@ -224,6 +227,7 @@ private:
     bool m_gravityKnown = false;  ///< m_gravityVector was read from a world (or given)
     btWaterFrame m_frame;
     bool m_frameFixed = false;    ///< set explicitly, or derived from a non-zero gravity
+    std::uint64_t m_frameVersion = 0;
     btBuoyancyStatus m_gravityStatus = btBuoyancyStatus::Ok;
     double m_time = 0;
     std::uint64_t m_substep = 0;
