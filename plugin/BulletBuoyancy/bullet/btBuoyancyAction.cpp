@@ -10,7 +10,6 @@
 #include <BulletBuoyancy/integrals/DragKernel.h>
 #include <BulletBuoyancy/geometry/SampleFormulas.h>
 #include <BulletBuoyancy/bullet/btBuoyancyDeviceBackend.h>
-#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <BulletCollision/CollisionDispatch/btCollisionWorld.h>
@@ -598,15 +597,16 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     const buoyancy::WaterPatch* patch = nullptr;
     const bool dragOn =
         m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 || m_settings.linearDamping > 0;
-    // Only for surfaces whose query is an iterative solve (Gerstner's Newton inversion): a grid, FFT or interactive
-    // surface answers by a lookup cheaper than the interpolation, and its short ripples would be smoothed away.
+    // Only for surfaces that say a query costs more than the interpolation (btWaterSurface::prefersHeightPatch:
+    // Gerstner's Newton inversion): a grid, FFT or interactive surface answers by a lookup cheaper than the
+    // interpolation, and its short ripples would be smoothed away.
     // Its spacing follows the shortest wave (btBuoyancyWaterPatchNodes). Each consumer uses the patch only when it
     // has fewer nodes than the points it stands for: the hydrostatics (the mesh's vertices for the exact-mesh
     // method, or the samples) and the drag (its clusters) decide apart, so a small
     // body's drag probes do not put its hydrostatics on interpolated heights. Not needed by either: not built.
     const buoyancy::WaterPatch* dragPatch = nullptr;
     if (!predicted && !flat && !straddling && m_settings.waterPatchNodes > 0 &&
-        dynamic_cast<const btGerstnerWaterSurface*>(water)) {
+        water->prefersHeightPatch()) {
         const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength()));
         // The exact-mesh method counts its vertices, not its edge midpoints too: measured in the wave benchmark (the
         // 16-sided cylinder, 34 vertices and 96 edges, swell), exact heights took 13 µs and the patch 22 µs (its

@@ -70,6 +70,8 @@ public:
     bool isTimeVarying() const override { return m_amplitudeSum > 0; }
     /// The shortest wavelength among the waves of non-zero amplitude, m (0 with none).
     double shortestWavelength() const override { return m_shortestWavelength; }
+    /// True while there are waves: each height query inverts the horizontal displacement by Newton's method.
+    bool prefersHeightPatch() const override { return m_amplitudeSum > 0; }
     /// Σ A_i k_i³ / (1 − Σ Q_i A_i k_i)²: a wave's third derivative is A k³ at Q = 0 and grows near steep crests as
     /// the horizontal map x₀ → x compresses (its Jacobian is ≥ 1 − Σ Q A k; design.md 2.8).
     double heightThirdDerivativeScale(double t) const override;

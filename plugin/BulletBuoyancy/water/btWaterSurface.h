@@ -79,6 +79,13 @@ public:
     /// True when the surface changes over time (bodies in it are kept awake).
     virtual bool isTimeVarying() const { return false; }
 
+    /// True when a height query is costlier than interpolating a small per-body grid of heights (an iterative solve,
+    /// such as the Gerstner surface's inversion of its horizontal displacement): bodies then query the nodes of a
+    /// patch over their footprint once per substep and interpolate (design.md 2.5, btBuoyancySettings::waterPatchNodes).
+    /// False (the default) for surfaces that answer by a lookup or a closed form: the patch would cost more and smooth
+    /// their short ripples away.
+    virtual bool prefersHeightPatch() const { return false; }
+
     /// Shortest horizontal length scale of the surface's shape (the shortest wavelength), m; 0 when unknown. Sizes the
     /// per-body wave patch (btBuoyancySettings::waterPatchNodesPerWavelength).
     virtual double shortestWavelength() const { return 0.0; }
