@@ -16,7 +16,7 @@ namespace buoyancy::bench {
 namespace {
 
 constexpr double kDragCoefficient = 1.0;  // btBuoyancySettings::dragCoefficient default
-constexpr double kLinearDamping = 0.3;    // btBuoyancySettings::linearDamping default, m/s
+constexpr double kLinearDamping = 0.3;    // a constant linear damping for the comparison methods, m/s
 
 Eigen::Vector3d toE(const btVector3& v) { return {double(v.x()), double(v.y()), double(v.z())}; }
 

@@ -333,6 +333,7 @@ std::vector<SpeedErrorRow> runSpeedVsErrorWaves(const std::vector<BenchShape>& s
                 dry.dragCoefficient = 0;
                 dry.skinFriction = 0;
                 dry.linearDamping = 0;
+                dry.radiationDamping = 0;
                 btBuoyancyAction full(own.body(), &own.buoyancyWorld(), timed);
                 btBuoyancyAction hydro(own.body(), &own.buoyancyWorld(), dry);
                 const bool mesh = shape->getMethod() == btBuoyancyMethod::ExactMesh;

@@ -57,6 +57,7 @@ struct UndampedBody {
         settings.method = btBuoyancyMethod::ExactMesh;
         settings.dragCoefficient = 0;
         settings.linearDamping = 0;
+        settings.radiationDamping = 0;
         settings.skinFriction = 0;
         settings.addedMass = false;
         btBuoyantBodySettings bs;

@@ -75,7 +75,7 @@ SceneShape readShape(const Reader& r, const json& j, const std::string& key, con
 
 btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::string& key) {
     r.requireObject(j, key);
-    r.allowKeys(j, key, {"method", "texture", "drag_coefficient", "skin_friction", "linear_damping", "added_mass",
+    r.allowKeys(j, key, {"method", "texture", "drag_coefficient", "skin_friction", "linear_damping", "radiation_damping", "added_mass",
                          "added_mass_coefficient", "error_budget", "drag_clusters", "water_patch_nodes",
                          "water_patch_nodes_per_wavelength", "hydrostatics_interval",
                          "hydrostatics_reuse_tolerance"});
@@ -108,6 +108,8 @@ btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::strin
     if (j.contains("drag_coefficient")) b.dragCoefficient = r.number(j["drag_coefficient"], key + ".drag_coefficient", 0, 100);
     if (j.contains("skin_friction")) b.skinFriction = r.number(j["skin_friction"], key + ".skin_friction", 0, 100);
     if (j.contains("linear_damping")) b.linearDamping = r.number(j["linear_damping"], key + ".linear_damping", 0, 100);
+    if (j.contains("radiation_damping"))
+        b.radiationDamping = r.number(j["radiation_damping"], key + ".radiation_damping", 0, 10);
     if (j.contains("added_mass")) b.addedMass = r.boolean(j["added_mass"], key + ".added_mass");
     if (j.contains("added_mass_coefficient"))
         b.addedMassCoefficient = r.number(j["added_mass_coefficient"], key + ".added_mass_coefficient", 0, 100);

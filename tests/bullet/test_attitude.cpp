@@ -96,6 +96,7 @@ TEST_CASE("a ball with a low centre of mass rights itself", "[bullet][attitude]"
         btBuoyancySettings bs = exactMesh();
         bs.dragCoefficient = 0;
         bs.linearDamping = 0;
+        bs.radiationDamping = 0;
         bs.addedMass = false;
         auto shape = btBuoyancyShape::create(mesh, bs);
         BulletTestWorld w;

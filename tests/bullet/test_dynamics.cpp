@@ -27,6 +27,7 @@ btBuoyancySettings undamped() {
     bs.method = btBuoyancyMethod::ExactMesh;
     bs.dragCoefficient = 0;
     bs.linearDamping = 0;
+    bs.radiationDamping = 0;
     bs.skinFriction = 0;
     bs.addedMass = false;
     return bs;

@@ -79,7 +79,11 @@ TEST_CASE("scale range: 1 mm to 100 km, 1 to 20,000 kg/m^3, floats at its draft 
                 // Bullet's stored velocity holds this substep's buoyancy kick but not the next gravity kick: up to
                 // g dt off at rest.
                 CHECK(std::abs(vy) < 1.01 * g * dt + 1e-3 * std::sqrt(g * L));
-                CHECK(std::abs(double(rb->getOrientation().getAngle())) < 1e-3);
+                // Upright only where upright is stable: a cube floating face down has a negative metacentric height
+                // for 0.211 < ρ/ρ_w < 0.789 (BM = L / (12 s), BG = L (1 − s) / 2), so at 500 kg/m³ the rounding of
+                // the start tips it over (at 1 mm within the second: its growth rate is sqrt(g / (2 L)) ≈ 70 /s).
+                const double s = rho / rhoWater;
+                if (1.0 / (12.0 * s) > (1.0 - s) / 2.0) CHECK(std::abs(double(rb->getOrientation().getAngle())) < 1e-3);
             } else {
                 // Sinking: downward, no faster than free fall.
                 CHECK(vy < 0);

@@ -110,6 +110,7 @@ TEST_CASE("short waves: a low-poly body is queried exactly, not through a larger
     btBuoyancySettings settings;
     settings.dragCoefficient = 0;  // no drag clusters: the points are the 8 vertices
     settings.linearDamping = 0;
+    settings.radiationDamping = 0;
     settings.hydrostaticsInterval = 1;  // every substep evaluated: the comparison below is per substep
     w.add(shape, body, makePose(btVector3(0, 0.02, 0)), settings);
     const int nodes = btBuoyancyWaterPatchNodes(settings, shape->getBoundsRadius(), sea.shortestWavelength());

@@ -101,6 +101,7 @@ btBuoyancySettings undampedDefaults() {
     btBuoyancySettings s = intervalSettings(0);
     s.dragCoefficient = 0;
     s.linearDamping = 0;
+    s.radiationDamping = 0;
     s.addedMass = false;
     return s;
 }

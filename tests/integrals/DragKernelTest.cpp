@@ -51,7 +51,7 @@ struct Clusters {
 };
 
 /// The scalar reference: the formulas one cluster at a time, as the action summed them before the batch.
-void scalarDrag(const Clusters& c, const DragMotion& m, double part[10]) {
+void scalarDrag(const Clusters& c, const DragMotion& m, double part[BB_DRAG_TERMS]) {
     namespace fm = formulas;
     for (std::size_t i = 0; i < c.x.size(); ++i) {
         const double wet = fm::bb_drag_wet_ramp(c.half[i], c.h[i] - c.y[i]);
@@ -137,18 +137,20 @@ TEST_CASE("drag kernel: every width the CPU runs matches the scalar formulas", "
             m.kd = (coefficients & 1) ? 500.0 : 0.0;
             m.kf = (coefficients & 2) ? 3.0 : 0.0;
             m.kl = (coefficients & 4) ? 300.0 : 0.0;
-            double ref[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+            double ref[BB_DRAG_TERMS] = {};
             scalarDrag(c, m, ref);
-            double scale[4] = {0, 0, 0, 0};  // per group: force, torque, velocity, area
-            for (int k = 0; k < 10; ++k) scale[k / 3 < 3 ? k / 3 : 3] += std::abs(ref[k]);
+            // per group: force, torque, velocity, area, linear damping power
+            const auto group = [](int k) { return k < 9 ? k / 3 : k - 6; };
+            double scale[5] = {0, 0, 0, 0, 0};
+            for (int k = 0; k < BB_DRAG_TERMS; ++k) scale[group(k)] += std::abs(ref[k]);
             for (int width : widths) {
-                double part[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+                double part[BB_DRAG_TERMS] = {};
                 accumulateClusterDrag(c.batch(), m, part, width);
-                for (int k = 0; k < 10; ++k) {
+                for (int k = 0; k < BB_DRAG_TERMS; ++k) {
                     INFO("n " << n << " coefficients " << coefficients << " width " << width << " term " << k << ": "
                               << part[k] << " scalar " << ref[k]);
                     REQUIRE(std::isfinite(part[k]));
-                    CHECK(std::abs(part[k] - ref[k]) <= 1e-12 * (scale[k / 3 < 3 ? k / 3 : 3] + 1e-300));
+                    CHECK(std::abs(part[k] - ref[k]) <= 1e-12 * (scale[group(k)] + 1e-300));
                 }
                 ++compared;
             }
@@ -184,7 +186,7 @@ TEST_CASE("drag kernel: a fully wet sphere of flat samples gets ½ ρ C_d π R²
     m.com[1] = -10;
     m.v[0] = v;
     m.kd = 0.5 * rho * Cd;
-    double part[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    double part[BB_DRAG_TERMS] = {};
     accumulateClusterDrag(c.batch(), m, part);
     const double expected = 0.5 * rho * Cd * M_PI * R * R * v * v;
     // The midpoint normals' projections sum to the silhouette up to the discretisation (O(1/nv²)).
@@ -192,6 +194,20 @@ TEST_CASE("drag kernel: a fully wet sphere of flat samples gets ½ ρ C_d π R²
     CHECK(std::abs(part[1]) < 1e-9 * expected);
     CHECK(std::abs(part[2]) < 1e-9 * expected);
     CHECK(part[9] == Approx(4 * M_PI * R * R).epsilon(1e-12));  // every sample wet: the whole area
+    CHECK(part[10] == 0);  // no linear damping: no linear power
+
+    SECTION("linear damping alone: force and power over the sphere's ∮ n_x² dA = 4πR²/3") {
+        // F_x = −ρ b v ∮ n_x² dA and its power F_x v, from every sample (front and back).
+        DragMotion l = m;
+        l.kd = 0;
+        const double b = 0.3;
+        l.kl = rho * b;
+        double lin[BB_DRAG_TERMS] = {};
+        accumulateClusterDrag(c.batch(), l, lin);
+        const double force = rho * b * v * 4 * M_PI * R * R / 3;
+        CHECK(lin[0] == Approx(-force).epsilon(2e-3));
+        CHECK(lin[10] == Approx(-force * v).epsilon(2e-3));
+    }
 }
 
 TEST_CASE("drag kernel: posing the clusters at every width matches the rotation written out", "[integrals][drag]") {

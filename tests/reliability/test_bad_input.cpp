@@ -51,7 +51,7 @@ std::shared_ptr<const btBuoyancyShape> cubeShape() { return btBuoyancyShape::cre
 bool same(const btBuoyancySettings& a, const btBuoyancySettings& b) {
     return a.method == b.method && a.textureSize == b.textureSize && a.preferModelUvs == b.preferModelUvs &&
            a.dragCoefficient == b.dragCoefficient && a.skinFriction == b.skinFriction &&
-           a.linearDamping == b.linearDamping && a.addedMass == b.addedMass &&
+           a.linearDamping == b.linearDamping && a.radiationDamping == b.radiationDamping && a.addedMass == b.addedMass &&
            a.addedMassCoefficient == b.addedMassCoefficient && a.buoyancyEnabled == b.buoyancyEnabled;
 }
 
@@ -213,6 +213,14 @@ TEST_CASE("bad input: buoyancy settings, rejected everywhere and never half-appl
          "skinFriction: must be a finite number >= 0 (got inf)"},
         {"negative damping", [](btBuoyancySettings& s) { s.linearDamping = -0.5; },
          "linearDamping: must be a finite number >= 0 (got -0.500000)"},
+        {"damping above 100 m/s", [](btBuoyancySettings& s) { s.linearDamping = 101; },
+         "linearDamping: must be in 0..100 m/s (got 101.000000)"},
+        {"negative radiation damping", [](btBuoyancySettings& s) { s.radiationDamping = -0.1; },
+         "radiationDamping: must be a finite number >= 0 (got -0.100000)"},
+        {"NaN radiation damping", [](btBuoyancySettings& s) { s.radiationDamping = kNaN; },
+         "radiationDamping: must be a finite number >= 0 (got nan)"},
+        {"radiation damping above 10", [](btBuoyancySettings& s) { s.radiationDamping = 11; },
+         "radiationDamping: must be in 0..10 (got 11.000000)"},
         {"negative added mass", [](btBuoyancySettings& s) { s.addedMassCoefficient = -2; },
          "addedMassCoefficient: must be a finite number >= 0 (got -2.000000)"},
         {"method out of the enum", [](btBuoyancySettings& s) { s.method = static_cast<btBuoyancyMethod>(42); },

@@ -220,7 +220,7 @@ btBuoyancyMassResult btBuoyancyAction::setBodyMassFromShape(double density) {
 void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy::WaterPatch* patch,
                                    const Eigen::Vector3d& com, const Eigen::Vector3d& v, const Eigen::Vector3d& w,
                                    double density, double time, Eigen::Vector3d& force, Eigen::Vector3d& torque,
-                                   Eigen::Vector3d& meanWaterVelocity, bool reuseWater) {
+                                   Eigen::Vector3d& meanWaterVelocity, double& linearPower, bool reuseWater) {
     // design.md 2.6 (paper eq. 12): per wetted sample, relative velocity v_i = v + ω × (p_i − c) − u(p_i);
     // pressure drag on front-facing samples F_i = −½ ρ C_d (A_i·v̂_i)|v_i|² v̂_i = −½ ρ C_d (A_i·v_i) v_i;
     // skin friction on the tangential part −½ ρ C_f |A_i| |v_t| v_t. The samples are the drag clusters
@@ -287,7 +287,7 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     // cluster is wet only in the first region whose box holds its centre (dry in the others).
     const std::size_t passes = m_straddling ? m_regionsReached.size() : 1;
     if (m_straddling) std::fill(m_dassigned.begin(), m_dassigned.end(), std::uint8_t(0));
-    double sum[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    double sum[BB_DRAG_TERMS] = {};
     for (std::size_t pass = 0; pass < passes; ++pass) {
         double rho = density;
         if (m_straddling) {
@@ -312,7 +312,7 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
         buoyancy::DragMotion motion;
         motion.kd = 0.5 * rho * m_settings.dragCoefficient;
         motion.kf = 0.5 * rho * m_settings.skinFriction;
-        motion.kl = rho * m_settings.linearDamping;
+        motion.kl = rho * m_linearDamping;  // radiation (faded with depth) and viscous: linearDampingNow
         for (int i = 0; i < 3; ++i) {
             for (int j = 0; j < 3; ++j) motion.R[3 * i + j] = R(i, j);
             motion.com[i] = com[i];
@@ -339,7 +339,7 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
         batch.ux = m_ux.data();
         batch.uy = m_uy.data();
         batch.uz = m_uz.data();
-        double part[BB_DRAG_TERMS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        double part[BB_DRAG_TERMS] = {};
         buoyancy::accumulateClusterDrag(batch, motion, part);
         for (int k = 0; k < BB_DRAG_TERMS; ++k) sum[k] += part[k];
     }
@@ -348,6 +348,43 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     const Eigen::Vector3d uSum(sum[6], sum[7], sum[8]);
     const double areaSum = sum[9];
     meanWaterVelocity = areaSum > 0 ? Eigen::Vector3d(uSum / areaSum) : Eigen::Vector3d::Zero();
+    linearPower = sum[10];
+}
+
+double btBuoyancyAction::linearDampingAt(const buoyancy::HydrostaticsResult& h, double topDepth) const {
+    // design.md 2.6, "Radiation damping": b = b_v + β g / ω_n · e^(−2 k d) · (1 − d / 3D)², zero from d = 3D down.
+    const double viscous = m_settings.linearDamping;
+    const double beta = m_settings.radiationDamping;
+    if (!(beta > 0)) return viscous;
+    const double radius = m_deformable ? m_deformable->getBoundsRadius() : m_shape->getBoundsRadius();
+    const double size = 2.0 * radius;  // D: the bounding sphere's diameter
+    const double d = std::max(topDepth, 0.0);
+    if (!(d < 3.0 * size)) return viscous;  // deeper than three sizes (or a NaN depth): no waves reach the surface
+    const double rho = m_world->getWaterBodies().empty() ? m_world->getFluidDensity() : m_activeDensity;
+    const double g = m_world->getGravity();
+    const double invMass = double(m_body->getInvMass());
+    if (!(invMass > 0) || !(g > 0) || !(rho > 0)) return viscous;
+    const double m = 1.0 / invMass;
+    const double sub = std::max(h.submerged_volume, 0.0);
+    const double ma = m_settings.addedMass ? m_settings.addedMassCoefficient * rho * sub : 0.0;
+    // Heave frequency ω_n² = ρ g A_ref / (m + m_a): the waterline area, at least ½ V^(2/3) so that a body leaving or
+    // entering the water (A_waterline → 0) or under it keeps a finite frequency of its own size.
+    const double volume23 = std::cbrt(m_shape->getUnitSolid().volume) * std::cbrt(m_shape->getUnitSolid().volume);
+    const double area = std::max(std::isfinite(h.waterline_area) ? h.waterline_area : 0.0, 0.5 * volume23);
+    const double k = rho * area / (m + ma);  // ω_n² / g: the wavenumber of the waves made at ω_n, 1/m
+    if (!(k > 0) || !std::isfinite(k)) return viscous;
+    const double taper = 1.0 - d / (3.0 * size);
+    return viscous + beta * std::sqrt(g / k) * std::exp(-2.0 * k * d) * taper * taper;
+}
+
+double btBuoyancyAction::linearDampingNow(const buoyancy::HydrostaticsResult& h, const Eigen::Isometry3d& pose) const {
+    const btWaterSurface* water = m_world->getWaterBodies().empty() ? m_world->getWater() : m_activeWater;
+    if (!water) return m_settings.linearDamping;
+    const Eigen::Vector3d bc = pose * (m_deformable ? m_deformable->getBoundsCentre() : m_shape->getBoundsCentre());
+    const double br = m_deformable ? m_deformable->getBoundsRadius() : m_shape->getBoundsRadius();
+    double lo = 0, hi = 0;
+    water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, m_world->getTime(), lo, hi);
+    return linearDampingAt(h, lo - (bc.y() + br));
 }
 
 // ---- deformable bodies and device backends ----
@@ -595,8 +632,8 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     double flatH = 0;
     const bool flat = water->isFlat(time, flatH);
     const buoyancy::WaterPatch* patch = nullptr;
-    const bool dragOn =
-        m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 || m_settings.linearDamping > 0;
+    const bool dragOn = m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 ||
+                        m_settings.linearDamping > 0 || m_settings.radiationDamping > 0;
     // Only for surfaces that say a query costs more than the interpolation (btWaterSurface::prefersHeightPatch:
     // Gerstner's Newton inversion): a grid, FFT or interactive surface answers by a lookup cheaper than the
     // interpolation, and its short ripples would be smoothed away.
@@ -676,7 +713,11 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // shift the draft (with the bare body velocity, −g·dt at rest, linear damping would sink it by b·g·dt/g).
     Eigen::Vector3d v, w;
     dragEvaluationVelocity(h, dt, v, w);
+    // Linear damping (design.md 2.6): the radiation damping faded by the depth of the body's top, plus the viscous.
+    m_linearDamping = dragOn ? linearDampingAt(h, lo - (bc.y() + br)) : 0.0;
     Eigen::Vector3d dragF = Eigen::Vector3d::Zero(), dragT = Eigen::Vector3d::Zero(), uMean = Eigen::Vector3d::Zero();
+    double linearPower = 0;
+    bool dragComputed = false;  // linearPower is this substep's (not an extrapolated drag)
     if (predicted && dragOn &&
         btHydrostaticsHistory::velocityDeviation(v, w, prediction, m_shape->getBoundsRadius()) <=
             allowedVelocityDeviation(h.waterline_area, (v - m_lastMeanWaterVelocity).norm() +
@@ -685,8 +726,10 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         dragF = prediction.dragForce;
         dragT = prediction.dragTorque;
         uMean = m_lastMeanWaterVelocity;
-    } else if (dragOn && !(onDevice && m_world->getDeviceBackend()->drag(*this, com, v, w, dragF, dragT, uMean))) {
-        computeDrag(pose, dragPatch, com, v, w, rho, time, dragF, dragT, uMean, predicted);
+    } else if (dragOn) {
+        if (!(onDevice && m_world->getDeviceBackend()->drag(*this, com, v, w, dragF, dragT, uMean, linearPower)))
+            computeDrag(pose, dragPatch, com, v, w, rho, time, dragF, dragT, uMean, linearPower, predicted);
+        dragComputed = true;
     }
     if (!predicted) m_lastMeanWaterVelocity = uMean;
     if (evaluationSubstep) {
@@ -701,11 +744,15 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         recordHydrostatics(substep, exact, meff, dt);
     }
 
-    // Drag stability (design.md 2.6): scale the drag impulse (J, L) by s so it can never add relative
-    // kinetic energy nor reverse the relative motion. In the mass metric ⟨x,y⟩ = m_eff x_v·y_v + x_ω·I y_ω,
-    // with a = −⟨Δ,V⟩/|V|² the explicit fraction removed, s = min(1/(1+a), a|V|²/|Δ|²): 1/(1+a) is the exact
-    // solution v' = v/(1 + k|v|dt) of quadratic drag along a fixed direction; the second bound keeps
-    // |V'|² ≤ |V|²(1 − s a) when Δ is not parallel to V.
+    // Drag solved at the end-of-step velocity (design.md 2.6, "Implicit drag"): the impulse (J, L) is scaled by s so
+    // that the velocity after it is the one the drag is evaluated at, as far as the drag's direction stays that of
+    // the explicit one. In the mass metric ⟨x,y⟩ = m_eff x_v·y_v + x_ω·I y_ω, with a = −⟨Δ,V⟩/|V|² the explicit
+    // fraction removed, split into the linear damping's a_l and the quadratic drag's a_q (by their shares of the
+    // drag's power): quadratic drag scales with x² and linear damping with x when the relative velocity scales by x,
+    // so V' = x V with x = 1 − a_q x² − a_l x, and s = (a_q x² + a_l x) / a. Pure linear damping gives s = 1/(1+a);
+    // pure quadratic drag along a fixed direction the exact implicit step, whose terminal velocity is the drag law's
+    // at any dt. The second bound s ≤ a|V|²/|Δ|² keeps |V'|² ≤ |V|²(1 − s a) when Δ is not parallel to V: the drag
+    // never adds relative kinetic energy nor reverses the relative motion.
     double s = 1.0;
     if (dragOn) {
         const Eigen::Vector3d J = dragF * dt, L = dragT * dt;
@@ -724,8 +771,14 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         }
         const double V2 = meff * vr.squaredNorm() + rotE;
         const double D2 = J.squaredNorm() / meff + rotD;
+        const double power = dragF.dot(vr) + dragT.dot(w);  // W, < 0 when the drag removes energy
+        if (dragComputed) m_linearShare = power < 0 ? std::min(std::max(linearPower / power, 0.0), 1.0) : 0.0;
         const double a = V2 > 0 ? -(J.dot(vr) + L.dot(w)) / V2 : 0.0;
-        if (a > 0 && D2 > 0) s = std::min(1.0 / (1.0 + a), a * V2 / D2);
+        if (a > 0 && D2 > 0) {
+            const double al = m_linearShare * a, aq = a - al;
+            const double x = 2.0 / ((1.0 + al) + std::sqrt((1.0 + al) * (1.0 + al) + 4.0 * aq));
+            s = std::min((aq * x * x + al * x) / a, a * V2 / D2);
+        }
     }
     dragF *= s;
     dragT *= s;

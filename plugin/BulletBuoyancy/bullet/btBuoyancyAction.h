@@ -149,6 +149,12 @@ public:
     /// @param dt  substep, s   @param[out] v  m/s   @param[out] w  rad/s
     void dragEvaluationVelocity(const buoyancy::HydrostaticsResult& h, double dt, Eigen::Vector3d& v,
                                 Eigen::Vector3d& w) const;
+    /// The linear damping coefficient b of this substep's drag, m/s (design.md 2.6, "Radiation damping"):
+    /// settings.linearDamping plus the radiation damping β g / ω_n faded by the depth of the body's top under the
+    /// water (btBuoyancySettings::radiationDamping). Public so a batching backend uses the action's own value.
+    /// @param h     this substep's hydrostatics (waterline area and submerged volume), water frame
+    /// @param pose  the mesh's pose in the water frame (btBuoyancyWorld::getWaterFrame)
+    double linearDampingNow(const buoyancy::HydrostaticsResult& h, const Eigen::Isometry3d& pose) const;
     ///@}
 
 private:
@@ -160,10 +166,14 @@ private:
     void evaluate(const btCollisionWorld* collisionWorld, double dt);
     /// Write what evaluate decided into the body (activation, sleeping thresholds, impulses), at the action's turn.
     void applyPending();
+    /// The drag sum at velocities (v, w) with linear damping m_linearDamping; linearPower: the linear damping's part
+    /// of its power, W (≤ 0).
     void computeDrag(const Eigen::Isometry3d& pose, const buoyancy::WaterPatch* patch, const Eigen::Vector3d& com,
                      const Eigen::Vector3d& v, const Eigen::Vector3d& w, double density, double time,
                      Eigen::Vector3d& force, Eigen::Vector3d& torque, Eigen::Vector3d& meanWaterVelocity,
-                     bool reuseWater = false);
+                     double& linearPower, bool reuseWater = false);
+    /// linearDampingNow given the depth of the top of the body's bounding sphere under the water (m, ≥ 0).
+    double linearDampingAt(const buoyancy::HydrostaticsResult& h, double topDepth) const;
     /// Temporal level of detail: fill `predicted` with this substep's extrapolated evaluation and return true,
     /// or return false when this substep must be evaluated exactly (btBuoyancySettings::hydrostaticsInterval).
     /// bodyLow / bodyHigh: the lowest and highest world height of the body's bounding sphere, waterLow / waterHigh the
@@ -250,6 +260,10 @@ private:
     /// patch, 1 otherwise): weighs a horizontal drift in the pose check (btHydrostaticsHistory::poseDeviation).
     double m_lastWaterSlope = 1.0;
     Eigen::Vector3d m_lastMeanWaterVelocity = Eigen::Vector3d::Zero(); ///< of the last computed drag, m/s
+    double m_linearDamping = 0;     ///< this substep's linear damping coefficient b (linearDampingNow), m/s
+    /// Share of the last computed drag's power that was linear damping (0..1): how the implicit drag solve splits an
+    /// extrapolated drag (temporal level of detail) into its linear and quadratic parts.
+    double m_linearShare = 0;
     ///@}
     // Workspace sized once (no allocation per substep).
     buoyancy::SampleWorkspace m_ws;

@@ -31,10 +31,13 @@ public:
     /// This substep's drag (design.md 2.6) of `action`'s body evaluated at velocities (v, w), after
     /// hydrostatics() answered true for it. The first call of a substep computes every body in one batch, each at
     /// btBuoyancyAction::dragEvaluationVelocity of its hydrostatics.
+    /// Each body's linear damping coefficient is btBuoyancyAction::linearDampingNow of its hydrostatics and pose.
+    /// @param[out] force, torque  N, N·m   @param[out] meanWaterVelocity  area-weighted over the wetted clusters, m/s
+    /// @param[out] linearDampingPower  the power of the linear damping alone, W (≤ 0; BB_DRAG_TERMS' part[10])
     /// @return false when not handled or when (com, v, w) differ from the batch's: compute on the CPU
     virtual bool drag(const btBuoyancyAction& action, const Eigen::Vector3d& com, const Eigen::Vector3d& v,
                       const Eigen::Vector3d& w, Eigen::Vector3d& force, Eigen::Vector3d& torque,
-                      Eigen::Vector3d& meanWaterVelocity) = 0;
+                      Eigen::Vector3d& meanWaterVelocity, double& linearDampingPower) = 0;
 
     /// One line for logs, e.g. "OpenCL: pthread-skylake (Portable Computing Language), double (cl_khr_fp64)".
     virtual std::string describe() const = 0;

@@ -73,6 +73,11 @@ void btBuoyancySettings::validate() const {
     requireNonNegative(dragCoefficient, "dragCoefficient");
     requireNonNegative(skinFriction, "skinFriction");
     requireNonNegative(linearDamping, "linearDamping");
+    requireNonNegative(radiationDamping, "radiationDamping");
+    if (radiationDamping > 10)
+        throw std::invalid_argument("radiationDamping: must be in 0..10 (got " + std::to_string(radiationDamping) + ")");
+    if (linearDamping > 100)
+        throw std::invalid_argument("linearDamping: must be in 0..100 m/s (got " + std::to_string(linearDamping) + ")");
     requireNonNegative(addedMassCoefficient, "addedMassCoefficient");
     if (!std::isfinite(curvedShapeTolerance) || curvedShapeTolerance <= 0 || curvedShapeTolerance > 0.1)
         throw std::invalid_argument("curvedShapeTolerance: must be a finite number in (0, 0.1] (got " +

@@ -45,12 +45,23 @@ struct btBuoyancySettings {
     /// Skin-friction coefficient C_f on the tangential relative velocity, dimensionless, ≥ 0; typical
     /// 0.003–0.01 for a hull; 0 (default) turns it off.
     double skinFriction = 0.0;
-    /// Linear pressure damping b, m/s, ≥ 0: per wetted sample F_i = −ρ b (A_i·v_i) Â_i. Stands for what
-    /// quadratic drag misses at low speed (wave radiation, which is what really brings a bobbing body to
-    /// rest; viscous damping). Not in the paper. For a box heaving with waterplane area A and mass m it gives
-    /// a damping ratio ζ = b sqrt(ρ A) / (2 sqrt(g m)): 0.3 gives ζ ≈ 0.1 for a 2×0.4×1 m plank at s = 0.75,
-    /// ≈ 0.2 for a 10 cm cube at s = 0.5. 0 turns it off (then a small bobbing decays only like 1/t).
-    double linearDamping = 0.3;
+    /// Wave-radiation damping β, dimensionless, 0..10; 0 turns it off. A body moving at the free surface makes waves
+    /// that carry its energy away: this is what brings a bobbing body to rest. Applied as a linear pressure damping
+    /// per wetted sample, F_i = −ρ b (A_i·v_i) Â_i, with a coefficient that scales with the body and fades with depth
+    /// like the energy of the waves it makes (design.md 2.6, "Radiation damping"):
+    ///   b = β g / ω_n · e^(−2 k d) · (1 − d / (3 D))²   for d < 3 D, else 0,
+    /// ω_n² = ρ g A_ref / (m + m_a) the body's heave frequency (A_ref its waterplane area, at least ½ V^(2/3)),
+    /// k = ω_n² / g the wavenumber of the waves it makes at that frequency, d the depth of the top of its bounding
+    /// sphere under the water (0 while it pierces the surface), D that sphere's diameter. Geometrically similar
+    /// bodies get the same damping ratio: ζ = β/3 in heave for a half-immersed sphere, β/2 for a wall-sided box.
+    /// Default 0.3: ζ = 0.10 for the half-immersed sphere, against Hulme (1982)'s 0.08–0.13 at resonance
+    /// (docs/accuracy.md); a body deeper than three of its sizes gets none (its terminal velocity is the drag law's).
+    double radiationDamping = 0.3;
+    /// Depth-independent linear (viscous) damping b_v, m/s, 0..100, added to the radiation damping's b at every depth:
+    /// per wetted sample F_i = −ρ b_v (A_i·v_i) Â_i. For a box heaving with waterplane area A and mass m it gives a
+    /// damping ratio ζ = b_v sqrt(ρ A) / (2 sqrt(g m)); for a body sinking at speed v it lowers the terminal velocity
+    /// by about b_v / v (a sphere: (2/3) b_v / (½ C_d v)). Default 0 (off): deep terminal velocities are the drag law's.
+    double linearDamping = 0.0;
 
     ///@name Level of detail (design.md 2.5: doing less work)
     /// Drag level of detail: at most this many drag samples per body, made by merging the shape's fine drag

@@ -37,7 +37,7 @@
 
 namespace {
 constexpr int kHydroTerms = 12;   // BB_HYDRO_TERMS
-constexpr int kDragTerms = 10;    // BB_DRAG_TERMS
+constexpr int kDragTerms = 11;    // BB_DRAG_TERMS
 constexpr int kSampleStride = 16; // BB_SAMPLE_STRIDE (kernels/samples.cl)
 constexpr int kBodyStride = 32;   // BB_BODY_STRIDE
 constexpr int kWaterFlat = 0, kWaterGerstner = 1, kWaterGrid = 2;
@@ -155,6 +155,7 @@ struct btOpenClBuoyancyBackend::Impl {
         bool valid = false, dragValid = false;
         Eigen::Vector3d v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero(), F = Eigen::Vector3d::Zero(),
                         T = Eigen::Vector3d::Zero(), u = Eigen::Vector3d::Zero();
+        double linearPower = 0;  ///< the linear damping's power, W
     };
     std::vector<Body> bodies;
     std::unordered_map<const btBuoyancyAction*, std::size_t> index;
@@ -536,17 +537,21 @@ struct btOpenClBuoyancyBackend::Impl {
         for (std::size_t i = 0; i < bodies.size(); ++i) {
             Body& b = bodies[i];
             const btBuoyancySettings& s = b.action->getSettings();
-            if (!b.valid || !(s.dragCoefficient > 0 || s.skinFriction > 0 || s.linearDamping > 0)) continue;
+            if (!b.valid ||
+                !(s.dragCoefficient > 0 || s.skinFriction > 0 || s.linearDamping > 0 || s.radiationDamping > 0))
+                continue;
             const buoyancy::DragClusters& c = b.action->getDragClusters();
             if (c.size() == 0) continue;
             b.action->dragEvaluationVelocity(b.h, dt, b.v, b.w);
+            // The same linear damping as the CPU path: the viscous part plus the radiation damping faded by depth.
+            const double damping = b.action->linearDampingNow(b.h, b.pose);
             const std::size_t slot = dragSlotFor(c);
             const std::size_t k = which.size();
             which.push_back(i);
             pushPose(b.pose, b.com);
             const double extra[9] = {b.v.x(), b.v.y(), b.v.z(), b.w.x(), b.w.y(), b.w.z(),
                                      0.5 * rho * s.dragCoefficient, 0.5 * rho * s.skinFriction,
-                                     rho * s.linearDamping};
+                                     rho * damping};
             params.insert(params.end(), extra, extra + 9);
             params.resize((k + 1) * kBodyStride, 0.0);
             addTiles(k, dragSlots[slot].offset, dragSlots[slot].count,
@@ -567,7 +572,8 @@ struct btOpenClBuoyancyBackend::Impl {
             b.F = Eigen::Vector3d(o[0], o[1], o[2]);
             b.T = Eigen::Vector3d(o[3], o[4], o[5]);
             b.u = o[9] > 0 ? Eigen::Vector3d(Eigen::Vector3d(o[6], o[7], o[8]) / o[9]) : Eigen::Vector3d::Zero();
-            b.dragValid = b.F.allFinite() && b.T.allFinite() && b.u.allFinite();
+            b.linearPower = o[10];
+            b.dragValid = b.F.allFinite() && b.T.allFinite() && b.u.allFinite() && std::isfinite(b.linearPower);
         }
     }
 };
@@ -687,7 +693,7 @@ std::unique_ptr<btOpenClBuoyancyBackend> btOpenClBuoyancyBackend::create(btBuoya
         for (cl::Kernel* k : {&impl->kHydro, &impl->kDrag, &impl->kRebake})
             limit = std::min(limit, k->getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(impl->dev));
         const std::size_t localMem = impl->dev.getInfo<CL_DEVICE_LOCAL_MEM_SIZE>();
-        limit = std::min(limit, localMem / (kHydroTerms * impl->realSize + 64));
+        limit = std::min(limit, localMem / (std::max(kHydroTerms, kDragTerms) * impl->realSize + 64));
         std::size_t local = 1;
         while (local * 2 <= std::min<std::size_t>(limit, std::size_t(options.workGroupSize))) local *= 2;
         if (local < 64 && limit >= 64) local = 64;
@@ -742,7 +748,7 @@ bool btOpenClBuoyancyBackend::hydrostatics(const btBuoyancyAction& action, const
 
 bool btOpenClBuoyancyBackend::drag(const btBuoyancyAction& action, const Eigen::Vector3d& com, const Eigen::Vector3d& v,
                                    const Eigen::Vector3d& w, Eigen::Vector3d& force, Eigen::Vector3d& torque,
-                                   Eigen::Vector3d& meanWaterVelocity) {
+                                   Eigen::Vector3d& meanWaterVelocity, double& linearDampingPower) {
     Impl& d = *m_impl;
     std::lock_guard<std::mutex> lock(d.mutex);
     if (!d.enabled || d.hydroDone != d.substep) return false;
@@ -767,6 +773,7 @@ bool btOpenClBuoyancyBackend::drag(const btBuoyancyAction& action, const Eigen::
     force = b.F;
     torque = b.T;
     meanWaterVelocity = b.u;
+    linearDampingPower = b.linearPower;
     ++d.stats.dragAnswers;
     return true;
 }

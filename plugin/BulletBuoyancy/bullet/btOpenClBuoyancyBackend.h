@@ -57,7 +57,7 @@ public:
                       buoyancy::HydrostaticsResult& out) override;
     bool drag(const btBuoyancyAction& action, const Eigen::Vector3d& com, const Eigen::Vector3d& v,
               const Eigen::Vector3d& w, Eigen::Vector3d& force, Eigen::Vector3d& torque,
-              Eigen::Vector3d& meanWaterVelocity) override;
+              Eigen::Vector3d& meanWaterVelocity, double& linearDampingPower) override;
     std::string describe() const override;
 
     /// Pause the backend (false: it declines every body, so the world runs on the CPU path) or resume it.

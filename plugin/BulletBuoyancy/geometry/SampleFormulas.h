@@ -48,7 +48,7 @@ typedef double bb_real;
 /// Number of hydrostatic sums per body (see bb_hydro_accumulate).
 #define BB_HYDRO_TERMS 12
 /// Number of drag sums per body (see bb_drag_accumulate).
-#define BB_DRAG_TERMS 10
+#define BB_DRAG_TERMS 11
 
 /// Rigid transform of one sample (design.md 1): p' = R p + t, A' = R A (area vectors are normal × area:
 /// they rotate only). R is row-major (R[3 r + c]); t is the translation, m. With t = translation − reference
@@ -138,7 +138,9 @@ BB_FN bb_real bb_cluster_half_extent(const bb_real* R, const bb_real* C) {
 ///   pressure drag on front-facing samples  F −= ½ρC_d (A·v_i) v_i   (= −½ρC_d (A·v̂)|v|² v̂),  A·v_i > 0
 ///   linear pressure damping               F −= ρ b (A·v_i) Â
 ///   skin friction on the tangential part   F −= ½ρC_f a |v_t| v_t
-///   part[0..2] += F, part[3..5] += r × F, part[6..8] += a u, part[9] += a.
+///   part[0..2] += F, part[3..5] += r × F, part[6..8] += a u, part[9] += a,
+///   part[10] += the linear damping's power F_lin·v_i = −ρ b (A·v_i)² / |A| (≤ 0; its share of the drag's power tells
+///   the implicit drag solve how much of the drag is linear in the velocity, design.md 2.6).
 /// @param r      sample position relative to the centre of mass, m
 /// @param v,w    body linear (m/s) and angular (rad/s) velocity   @param u  water velocity at the sample, m/s
 /// @param wet    wet fraction 0…1 (bb_drag_wet_fraction); 0 adds nothing
@@ -169,6 +171,7 @@ BB_FN void bb_drag_accumulate(const bb_real* r, const bb_real* v, const bb_real*
         f0 -= c * A0;
         f1 -= c * A1;
         f2 -= c * A2;
+        part[10] -= c * av;
     }
     if (kf > 0 && an > 0) {
         const bb_real n0 = A0 / an, n1 = A1 / an, n2 = A2 / an;

@@ -82,13 +82,13 @@ using V = v8d;
 #endif
 #endif
 
-std::size_t runSse2(const DragClusterBatch& c, const DragMotion& m, double part[10]) { return sse2::run(c, m, part); }
+std::size_t runSse2(const DragClusterBatch& c, const DragMotion& m, double part[BB_DRAG_TERMS]) { return sse2::run(c, m, part); }
 #ifdef BB_DRAG_X86
-__attribute__((target("avx2"))) std::size_t runAvx2(const DragClusterBatch& c, const DragMotion& m, double part[10]) {
+__attribute__((target("avx2"))) std::size_t runAvx2(const DragClusterBatch& c, const DragMotion& m, double part[BB_DRAG_TERMS]) {
     return avx2::run(c, m, part);
 }
 __attribute__((target("avx512f"))) std::size_t runAvx512(const DragClusterBatch& c, const DragMotion& m,
-                                                        double part[10]) {
+                                                        double part[BB_DRAG_TERMS]) {
     return avx512::run(c, m, part);
 }
 __attribute__((target("avx2"))) std::size_t poseAvx2(const DragClusters& c, const double R[9], const double t[3],
@@ -108,7 +108,7 @@ int dragKernelLanes() {
     return lanes;
 }
 
-void accumulateClusterDrag(const DragClusterBatch& c, const DragMotion& m, double part[10], int lanes) {
+void accumulateClusterDrag(const DragClusterBatch& c, const DragMotion& m, double part[BB_DRAG_TERMS], int lanes) {
     std::size_t done = 0;
     const int width = lanes <= 0 ? dragKernelLanes() : std::min(lanes, dragKernelLanes());
 #ifdef BB_DRAG_X86

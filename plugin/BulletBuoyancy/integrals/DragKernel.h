@@ -32,14 +32,15 @@ struct DragMotion {
     double w[3] = {0, 0, 0};                     ///< angular velocity, rad/s
     double kd = 0;                               ///< ½ ρ C_d, kg/m³
     double kf = 0;                               ///< ½ ρ C_f, kg/m³
-    double kl = 0;                               ///< ρ b (linear damping), kg/(m²·s)
+    double kl = 0;                               ///< ρ b (linear damping: radiation and viscous), kg/(m²·s)
 };
 
-/// Add the drag of every cluster to part[10] (BB_DRAG_TERMS: force, torque about the centre of mass, area-weighted
-/// water velocity, wetted area), as bb_drag_wet_ramp + bb_drag_cluster_accumulate would for each cluster in turn.
+/// Add the drag of every cluster to part[11] (BB_DRAG_TERMS: force, torque about the centre of mass, area-weighted
+/// water velocity, wetted area, the linear damping's power), as bb_drag_wet_ramp + bb_drag_cluster_accumulate would
+/// for each cluster in turn.
 /// @param lanes  0: the widest the CPU runs (dragKernelLanes()); 2, 4 or 8 asks for that width (the tests run every
 ///               width the CPU has), a width the CPU lacks falls back to the widest it has below it
-void accumulateClusterDrag(const DragClusterBatch& clusters, const DragMotion& motion, double part[10], int lanes = 0);
+void accumulateClusterDrag(const DragClusterBatch& clusters, const DragMotion& motion, double part[11], int lanes = 0);
 
 /// Where posing the clusters writes (n entries each; DragClusterBatch's world-frame inputs).
 struct DragClusterPose {

@@ -9,7 +9,7 @@ BB_VM_INLINE V vsqrt(const V& x) { return BB_DRAG_SQRT(x); }
 /// Lane-wise bb_drag_accumulate at the point r (relative to the centre of mass) with area vector (Ax, Ay, Az) and
 /// area `area` already scaled by the wet fraction (0 in dry lanes, which then add nothing).
 BB_VM_INLINE void pointDrag(const V r[3], const V& A0, const V& A1, const V& A2, const V& a, const V v[3],
-                            const V w[3], const V u[3], const DragMotion& m, V acc[10]) {
+                            const V w[3], const V u[3], const DragMotion& m, V acc[11]) {
     const V zero = V{};
     const V vi0 = v[0] + (w[1] * r[2] - w[2] * r[1]) - u[0];
     const V vi1 = v[1] + (w[2] * r[0] - w[0] * r[2]) - u[1];
@@ -35,6 +35,7 @@ BB_VM_INLINE void pointDrag(const V r[3], const V& A0, const V& A1, const V& A2,
             f0 -= c * A0;
             f1 -= c * A1;
             f2 -= c * A2;
+            acc[10] -= c * av;  // its power f·v_i
         }
         if (m.kf > 0) {  // skin friction on the tangential part
             const V n0 = A0 / safe, n1 = A1 / safe, n2 = A2 / safe;
@@ -55,13 +56,13 @@ BB_VM_INLINE void pointDrag(const V r[3], const V& A0, const V& A1, const V& A2,
     acc[5] += r[0] * f1 - r[1] * f0;
 }
 
-BB_VM_INLINE std::size_t run(const DragClusterBatch& c, const DragMotion& m, double part[10]) {
+BB_VM_INLINE std::size_t run(const DragClusterBatch& c, const DragMotion& m, double part[11]) {
     constexpr int N = Traits<V>::N;
     const V zero = V{}, one = splat<V>(1.0), half = splat<V>(0.5);
     const V v[3] = {splat<V>(m.v[0]), splat<V>(m.v[1]), splat<V>(m.v[2])};
     const V w[3] = {splat<V>(m.w[0]), splat<V>(m.w[1]), splat<V>(m.w[2])};
     const double* R = m.R;
-    V acc[10];
+    V acc[11];
     for (V& a : acc) a = zero;
     std::size_t i = 0;
     for (; i + N <= c.n; i += N) {
@@ -107,7 +108,7 @@ BB_VM_INLINE std::size_t run(const DragClusterBatch& c, const DragMotion& m, dou
         const V rp[3] = {r[0] + d0, r[1] + d1, r[2] + d2};
         pointDrag(rp, A0, A1, A2, a, v, w, u, m, acc);
     }
-    for (int k = 0; k < 10; ++k)
+    for (int k = 0; k < 11; ++k)
         for (int l = 0; l < N; ++l) part[k] += acc[k][l];
     return i;
 }
