@@ -14,6 +14,7 @@
 // The Bullet layer.
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
+#include <BulletBuoyancy/bullet/btBuoyancyEvents.h>
 #include <BulletBuoyancy/bullet/btBuoyancyImmediate.h>
 #include <BulletBuoyancy/bullet/btBuoyancyMultiBodyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>

@@ -458,6 +458,12 @@ void btBuoyancyAction::applyPending() {
         BT_BUOYANCY_CHECK_BODY(*m_body);
     }
     m_pendingActivate = m_pendingSleep = m_pendingImpulse = false;
+    // Water events (btBuoyancyEvents.h): decided and delivered here, at the action's turn, never on a worker thread.
+    btBuoyancyEventType types[btBuoyancyWaterState::kMaxEvents];
+    int waterBodies[btBuoyancyWaterState::kMaxEvents];
+    const int waterBody = m_world->getWaterBodies().empty() ? -1 : m_activeWaterBody;
+    const int events = m_waterState.update(m_submergedFraction, waterBody, m_world->getEventSettings(), types, waterBodies);
+    if (events > 0) m_world->dispatchEvents(*this, types, waterBodies, events, m_submergedFraction);
 }
 
 void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double dt) {
@@ -601,6 +607,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         m_pendingAngularSleep = btScalar(m_baseAngularSleep);
         m_result = btBuoyancyResult();
         m_result.time = time;
+        m_submergedFraction = 0;
         return;
     }
     if (waves) m_pendingActivate = true;  // written at applyPending
@@ -804,6 +811,11 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     m_result.addedMass = ma;
     m_result.time = time;
     m_result.predicted = predicted;
+    {
+        const double bodyVolume = m_deformable ? m_deformable->getVolume() : m_shape->getVolume();
+        const double f = bodyVolume > 0 ? h.submerged_volume / bodyVolume : 0.0;
+        if (std::isfinite(f)) m_submergedFraction = std::min(std::max(f, 0.0), 1.0);
+    }
     // Never write NaN/Inf into a body (design.md 3): checked after rounding to btScalar (a finite double
     // can overflow a float) and on the velocities the impulses would give.
     const btVector3 J = toBullet(frame.toWorldVector(linearImpulse)), L = toBullet(frame.toWorldVector(angularImpulse));

@@ -133,6 +133,21 @@ public:
     /// Number of substeps whose impulses were rejected as non-finite (should stay 0).
     std::uint64_t getRejectedCount() const { return m_rejected; }
 
+    ///@name Water events and state (btBuoyancyEvents.h, docs/integration.md "Events and queries")
+    /// The body's submerged volume over its volume at the last substep, 0..1: 0 out of the water, 1 under it. It keeps
+    /// its last value while the body sleeps in calm water or gets no buoyancy for want of gravity; with
+    /// btBuoyancySettings::buoyancyEnabled false it is 0 (no submerged volume is computed).
+    double getSubmergedFraction() const { return m_submergedFraction; }
+    /// True from the substep the body entered the water until it leaves it (the hysteresis of
+    /// btBuoyancyWorld::getEventSettings).
+    bool isInWater() const { return m_waterState.inWater; }
+    /// True from the substep the body became fully submerged until it surfaces.
+    bool isFullySubmerged() const { return m_waterState.submerged; }
+    /// The water body the body is in: an index in btBuoyancyWorld::getWaterBodies(), or −1 when it is not in the
+    /// water (isInWater) or in the world's unbounded water.
+    int getWaterBody() const { return m_waterState.inWater ? m_waterState.waterBody : -1; }
+    ///@}
+
     ///@name Deformable bodies and device backends
     /// Deformable body (paper Fig. 17): use `deformable`'s samples, re-baked from animated vertices
     /// (btBuoyancyDeformable::setVertices), instead of the shape's; nullptr: the shape's again.
@@ -221,6 +236,11 @@ private:
     btVector3 m_pendingJ = btVector3(0, 0, 0), m_pendingL = btVector3(0, 0, 0);
     ///@}
     std::uint64_t m_rejected = 0;
+    /// @name Water events: the submerged fraction set by evaluate, the states advanced by applyPending
+    ///@{
+    double m_submergedFraction = 0;     ///< getSubmergedFraction
+    btBuoyancyWaterState m_waterState;  ///< in water, fully submerged, which water body
+    ///@}
     /// @name The water of the current substep: the world's unbounded water, or the water body chosen (design.md 2.9)
     ///@{
     const btWaterSurface* m_activeWater = nullptr; ///< nullptr: no water reaches the body

@@ -1,9 +1,11 @@
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyDeviceBackend.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <BulletDynamics/Dynamics/btDynamicsWorld.h>
+#include <LinearMath/btIDebugDraw.h>
 
 #include <algorithm>
 #include <cmath>
@@ -144,6 +146,9 @@ void btBuoyancyWorld::setWater(const btWaterSurface* water) {
 
 int btBuoyancyWorld::addWaterBody(const btWaterBodyInfo& info) {
     const std::string who = "btBuoyancyWorld::addWaterBody: ";
+    if (m_dispatching)
+        throw std::logic_error(who + "called from a water event callback (inside stepSimulation); add water bodies "
+                                     "between steps");
     if (m_inBatch.load())
         throw std::logic_error(who + "called while the world evaluates a substep's bodies; add water bodies between steps");
     btWaterBody body;
@@ -185,6 +190,9 @@ int btBuoyancyWorld::addWaterBody(const btWaterBodyInfo& info) {
 }
 
 void btBuoyancyWorld::removeAllWaterBodies() {
+    if (m_dispatching)
+        throw std::logic_error("btBuoyancyWorld::removeAllWaterBodies: called from a water event callback (inside "
+                               "stepSimulation); change water bodies between steps");
     if (m_inBatch.load())
         throw std::logic_error("btBuoyancyWorld::removeAllWaterBodies: called while the world evaluates a substep's "
                                "bodies; change water bodies between steps");
@@ -250,6 +258,9 @@ void btBuoyancyWorld::setDeviceBackend(std::unique_ptr<btBuoyancyDeviceBackend> 
 }
 
 std::uint64_t btBuoyancyWorld::registerAction(btBuoyancyAction* action) {
+    if (m_dispatching)
+        throw std::logic_error("btBuoyancyAction: created from a water event callback of its btBuoyancyWorld (inside "
+                               "stepSimulation); create and destroy actions between steps");
     if (m_inBatch.load())
         throw std::logic_error("btBuoyancyAction: created while its btBuoyancyWorld evaluates a substep's bodies in "
                                "parallel; create and destroy actions between steps");
@@ -259,6 +270,13 @@ std::uint64_t btBuoyancyWorld::registerAction(btBuoyancyAction* action) {
 }
 
 void btBuoyancyWorld::unregisterAction(btBuoyancyAction* action) {
+    if (m_dispatching) {
+        // Called from an action's destructor (noexcept) while an action's events are delivered: refused with a
+        // message, never a use of a destroyed action.
+        std::fprintf(stderr, "btBuoyancyAction: destroyed from a water event callback of its btBuoyancyWorld (inside "
+                             "stepSimulation); create and destroy actions between steps\n");
+        std::abort();
+    }
     if (m_inBatch.load()) {
         // Called from an action's destructor (noexcept): refused with a message, never a data race.
         std::fprintf(stderr, "btBuoyancyAction: destroyed while its btBuoyancyWorld evaluates a substep's bodies in "
@@ -268,4 +286,221 @@ void btBuoyancyWorld::unregisterAction(btBuoyancyAction* action) {
     m_batchDirty = true;
     m_batch.erase(std::remove(m_batch.begin(), m_batch.end(), action), m_batch.end());
     m_actions.erase(std::remove(m_actions.begin(), m_actions.end(), action), m_actions.end());
+}
+
+// ---- Events and queries for game logic (btBuoyancyEvents.h) ----
+
+void btBuoyancyWorld::addEventListener(btBuoyancyEventListener* listener) {
+    if (!listener) throw std::invalid_argument("btBuoyancyWorld::addEventListener: listener: must not be null");
+    if (std::find(m_listeners.begin(), m_listeners.end(), listener) != m_listeners.end()) return;
+    m_listeners.push_back(listener);
+}
+
+void btBuoyancyWorld::removeEventListener(btBuoyancyEventListener* listener) {
+    if (!listener) return;
+    if (m_dispatching) {
+        // The dispatch walks the array by index: the entry is emptied now and dropped when the dispatch ends.
+        for (btBuoyancyEventListener*& l : m_listeners)
+            if (l == listener) {
+                l = nullptr;
+                m_listenersRemoved = true;
+            }
+        return;
+    }
+    m_listeners.erase(std::remove(m_listeners.begin(), m_listeners.end(), listener), m_listeners.end());
+}
+
+void btBuoyancyWorld::setEventSettings(const btBuoyancyEventSettings& settings) {
+    settings.validate();
+    m_eventSettings = settings;
+}
+
+void btBuoyancyWorld::dispatchEvents(btBuoyancyAction& action, const btBuoyancyEventType* types,
+                                     const int* waterBodies, int count, double submergedFraction) {
+    if (count <= 0 || m_listeners.empty()) return;
+    // The flag refuses actions and water bodies made or destroyed by a callback; it is cleared and the listeners
+    // removed by a callback are dropped even when a callback throws.
+    struct Dispatching {
+        btBuoyancyWorld& world;
+        explicit Dispatching(btBuoyancyWorld& w) : world(w) { world.m_dispatching = true; }
+        ~Dispatching() {
+            world.m_dispatching = false;
+            if (world.m_listenersRemoved) {
+                world.m_listeners.erase(std::remove(world.m_listeners.begin(), world.m_listeners.end(), nullptr),
+                                        world.m_listeners.end());
+                world.m_listenersRemoved = false;
+            }
+        }
+    } dispatching(*this);
+    for (int k = 0; k < count; ++k) {
+        btBuoyancyEvent event;
+        event.type = types[k];
+        event.action = &action;
+        event.body = action.getRigidBody();
+        event.waterBody = waterBodies[k];
+        event.water = waterBodies[k] >= 0 && std::size_t(waterBodies[k]) < m_waterBodies.size()
+                          ? &m_waterBodies[std::size_t(waterBodies[k])]
+                          : nullptr;
+        event.submergedFraction = submergedFraction;
+        event.time = m_time;
+        event.substep = m_substep;
+        // Listeners added by a callback receive the next event on (the count is taken per event).
+        const std::size_t n = m_listeners.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            btBuoyancyEventListener* listener = m_listeners[i];
+            if (!listener) continue;
+            switch (event.type) {
+            case btBuoyancyEventType::EnterWater: listener->onEnterWater(event); break;
+            case btBuoyancyEventType::LeaveWater: listener->onLeaveWater(event); break;
+            case btBuoyancyEventType::FullySubmerged: listener->onFullySubmerged(event); break;
+            case btBuoyancyEventType::Surfaced: listener->onSurfaced(event); break;
+            }
+        }
+    }
+}
+
+namespace {
+/// The axis of the box face nearest the water frame's up (its top: the water is not cut off there).
+int topAxisOf(const Eigen::Vector3d& up) {
+    int top = 0;
+    for (int k = 1; k < 3; ++k)
+        if (std::abs(up[k]) > std::abs(up[top])) top = k;
+    return top;
+}
+/// True when `p` is within the sides of `body`'s box and not below its bottom (the face opposite its top), with a
+/// tolerance `slack`, m.
+bool inColumn(const btWaterBody& body, const Eigen::Vector3d& p, int top, double upSign, double slack) {
+    for (int k = 0; k < 3; ++k) {
+        const bool skipMax = k == top && upSign > 0, skipMin = k == top && upSign < 0;
+        if (!skipMin && !(p[k] >= body.regionMin[k] - slack)) return false;
+        if (!skipMax && !(p[k] <= body.regionMax[k] + slack)) return false;
+    }
+    return true;
+}
+/// True when `p` is within the sides of `body`'s box (every face but its top and bottom), with a tolerance `slack`, m.
+bool withinSides(const btWaterBody& body, const Eigen::Vector3d& p, int top, double slack) {
+    for (int k = 0; k < 3; ++k)
+        if (k != top && !(p[k] >= body.regionMin[k] - slack && p[k] <= body.regionMax[k] + slack)) return false;
+    return true;
+}
+}  // namespace
+
+int btBuoyancyWorld::waterBodyAt(const Eigen::Vector3d& point) const {
+    for (std::size_t i = 0; i < m_waterBodies.size(); ++i)
+        if (m_waterBodies[i].distanceTo(point) == 0.0) return int(i);
+    const Eigen::Vector3d up = m_frame.up();
+    const int top = topAxisOf(up);
+    for (std::size_t i = 0; i < m_waterBodies.size(); ++i)
+        if (inColumn(m_waterBodies[i], point, top, up[top], 0.0)) return int(i);
+    return -1;
+}
+
+btWaterQueryResult btBuoyancyWorld::queryWater(const btVector3& point) const {
+    const Eigen::Vector3d p(double(point.x()), double(point.y()), double(point.z()));
+    if (!p.allFinite())
+        throw std::invalid_argument("btBuoyancyWorld::queryWater: point " + btWaterFrame::vectorText(p) +
+                                    " is not finite");
+    btWaterQueryResult r;
+    const btWaterSurface* surface = m_water;
+    int index = -1;
+    if (!m_waterBodies.empty()) {
+        index = waterBodyAt(p);
+        if (index < 0) return r;
+        surface = m_waterBodies[std::size_t(index)].surface;
+        r.waterBodyName = m_waterBodies[std::size_t(index)].name.c_str();
+    }
+    if (!surface) return r;
+    r.hasWater = true;
+    r.waterBody = index;
+    // In water coordinates the surface is y = f(x, z, t): its height, and its slope by central differences.
+    const Eigen::Vector3d q = m_frame.toWaterPoint(p);
+    const double wavelength = surface->shortestWavelength();
+    const double step = std::isfinite(wavelength) && wavelength > 0 ? 1e-3 * wavelength : 1e-3;
+    const double xs[5] = {q.x(), q.x() + step, q.x() - step, q.x(), q.x()};
+    const double zs[5] = {q.z(), q.z(), q.z(), q.z() + step, q.z() - step};
+    double hs[5] = {0, 0, 0, 0, 0};
+    surface->heights(xs, zs, 5, m_time, hs);
+    const double h = hs[0];
+    const Eigen::Vector3d slopeNormal(-(hs[1] - hs[2]) / (2 * step), 1.0, -(hs[3] - hs[4]) / (2 * step));
+    const double depth = h - q.y();
+    r.inWater = depth >= 0;
+    const Eigen::Vector3d onSurface(q.x(), h, q.z());
+    const Eigen::Vector3d at = r.inWater ? q : onSurface;
+    double vx = 0, vy = 0, vz = 0;
+    surface->velocities(&at.x(), &at.y(), &at.z(), 1, m_time, &vx, &vy, &vz);
+    const Eigen::Vector3d normal = m_frame.toWorldVector(slopeNormal.normalized());
+    const Eigen::Vector3d surfaceWorld = m_frame.toWorldPoint(onSurface);
+    const Eigen::Vector3d velocity = m_frame.toWorldVector(Eigen::Vector3d(vx, vy, vz));
+    r.surfaceHeight = btScalar(h);
+    r.depth = btScalar(depth);
+    r.surfacePoint = btVector3(btScalar(surfaceWorld.x()), btScalar(surfaceWorld.y()), btScalar(surfaceWorld.z()));
+    r.normal = btVector3(btScalar(normal.x()), btScalar(normal.y()), btScalar(normal.z()));
+    r.velocity = btVector3(btScalar(velocity.x()), btScalar(velocity.y()), btScalar(velocity.z()));
+    return r;
+}
+
+void btBuoyancyWorld::debugDrawWater(btIDebugDraw* drawer, const btVector3& centre, btScalar halfSize,
+                                     int cellsPerSide, const btVector3& colour) const {
+    const std::string who = "btBuoyancyWorld::debugDrawWater: ";
+    if (!drawer) throw std::invalid_argument(who + "drawer: must not be null");
+    if (!std::isfinite(double(halfSize)) || !(halfSize > 0))
+        throw std::invalid_argument(who + "halfSize: must be a finite number > 0 (got " +
+                                    std::to_string(double(halfSize)) + ")");
+    if (cellsPerSide < 1 || cellsPerSide > 1024)
+        throw std::invalid_argument(who + "cellsPerSide: must be in 1..1024 (got " + std::to_string(cellsPerSide) + ")");
+    const Eigen::Vector3d c(double(centre.x()), double(centre.y()), double(centre.z()));
+    if (!c.allFinite()) throw std::invalid_argument(who + "centre: must be finite");
+    const int m = cellsPerSide + 1;
+    std::vector<double> xs(std::size_t(m) * m), zs(xs.size()), hs(xs.size());
+    std::vector<btVector3> points(xs.size());
+    std::vector<std::uint8_t> drawn(xs.size());
+    const Eigen::Vector3d up = m_frame.up();
+    const int top = topAxisOf(up);
+    // One surface over the water-frame rectangle [x0, x1] × [z0, z1]; a water body's points outside its region's
+    // sides (a frame whose axes are not the box's) are left out with the segments that end there.
+    const auto drawGrid = [&](const btWaterSurface& surface, double x0, double x1, double z0, double z1,
+                              const btWaterBody* body) {
+        for (int i = 0; i < m; ++i)
+            for (int j = 0; j < m; ++j) {
+                const std::size_t k = std::size_t(i) * m + j;
+                xs[k] = i == cellsPerSide ? x1 : x0 + (x1 - x0) * double(i) / cellsPerSide;
+                zs[k] = j == cellsPerSide ? z1 : z0 + (z1 - z0) * double(j) / cellsPerSide;
+            }
+        surface.heights(xs.data(), zs.data(), xs.size(), m_time, hs.data());
+        const double slack = body ? 1e-9 * (1.0 + (body->regionMax - body->regionMin).norm()) : 0.0;
+        for (std::size_t k = 0; k < xs.size(); ++k) {
+            const Eigen::Vector3d w = m_frame.toWorldPoint(Eigen::Vector3d(xs[k], hs[k], zs[k]));
+            points[k] = btVector3(btScalar(w.x()), btScalar(w.y()), btScalar(w.z()));
+            drawn[k] = std::isfinite(hs[k]) && (!body || withinSides(*body, w, top, slack));
+        }
+        for (int i = 0; i < m; ++i)
+            for (int j = 0; j < m; ++j) {
+                const std::size_t k = std::size_t(i) * m + j;
+                if (!drawn[k]) continue;
+                if (j + 1 < m && drawn[k + 1]) drawer->drawLine(points[k], points[k + 1], colour);
+                if (i + 1 < m && drawn[k + m]) drawer->drawLine(points[k], points[k + m], colour);
+            }
+    };
+    if (m_waterBodies.empty()) {
+        if (!m_water) return;
+        const Eigen::Vector3d q = m_frame.toWaterPoint(c);
+        const double s = double(halfSize);
+        drawGrid(*m_water, q.x() - s, q.x() + s, q.z() - s, q.z() + s, nullptr);
+        return;
+    }
+    for (const btWaterBody& body : m_waterBodies) {
+        // The footprint: the water-frame x, z extent of the region's corners.
+        double x0 = 0, x1 = 0, z0 = 0, z1 = 0;
+        for (int corner = 0; corner < 8; ++corner) {
+            const Eigen::Vector3d p((corner & 1) ? body.regionMax.x() : body.regionMin.x(),
+                                    (corner & 2) ? body.regionMax.y() : body.regionMin.y(),
+                                    (corner & 4) ? body.regionMax.z() : body.regionMin.z());
+            const Eigen::Vector3d q = m_frame.toWaterPoint(p);
+            x0 = corner == 0 ? q.x() : std::min(x0, q.x());
+            x1 = corner == 0 ? q.x() : std::max(x1, q.x());
+            z0 = corner == 0 ? q.z() : std::min(z0, q.z());
+            z1 = corner == 0 ? q.z() : std::max(z1, q.z());
+        }
+        drawGrid(*body.surface, x0, x1, z0, z1, &body);
+    }
 }

@@ -16,6 +16,7 @@
 /// explicitly). A frame whose up is not antiparallel to the world's gravity (beyond 1e-6 rad) is refused; gravity
 /// turned away from it later gives the bodies no buoyancy, with a status saying why.
 
+#include <BulletBuoyancy/bullet/btBuoyancyEvents.h>
 #include <BulletBuoyancy/bullet/btWaterBody.h>
 #include <BulletBuoyancy/bullet/btWaterFrame.h>
 
@@ -31,6 +32,7 @@ class btBuoyancyDeviceBackend;
 class btActionInterface;
 class btCollisionWorld;
 class btDynamicsWorld;
+class btIDebugDraw;
 
 /// Why the bodies of a world got no buoyancy in a substep although they may be in the water
 /// (btBuoyancyResult::status, btBuoyancyWorld::getGravityStatus).
@@ -203,6 +205,49 @@ public:
     int getLastBatchSize() const { return int(m_lastBatchSize); }
     ///@}
 
+    ///@name Events and queries for game logic (btBuoyancyEvents.h, docs/integration.md "Events and queries")
+    /// Register a listener of every body's water events (enter, leave, fully submerged, surfaced); not owned, must
+    /// stay alive while registered. Listeners are called in the order registered; adding one twice is ignored.
+    /// Callable at any time, also from a callback (then it receives events from the next one on).
+    /// @throws std::invalid_argument for nullptr
+    void addEventListener(btBuoyancyEventListener* listener);
+    /// Unregister a listener (unknown ones are ignored); from a callback, it receives no further event.
+    void removeEventListener(btBuoyancyEventListener* listener);
+    /// The registered listeners, in registration order (during a dispatch a listener removed by a callback is a
+    /// nullptr entry until the dispatch ends).
+    const std::vector<btBuoyancyEventListener*>& getEventListeners() const { return m_listeners; }
+    /// The hysteresis of the events (thresholds on each body's submerged fraction; defaults in btBuoyancyEventSettings).
+    /// @throws std::invalid_argument naming the field (the settings unchanged)
+    void setEventSettings(const btBuoyancyEventSettings& settings);
+    /// The event thresholds in use.
+    const btBuoyancyEventSettings& getEventSettings() const { return m_eventSettings; }
+    /// True while listeners are being called (inside stepSimulation).
+    bool isDispatchingEvents() const { return m_dispatching; }
+    /// What the water is at `point` (world, m) at the water's current time (getTime): whether water lies above or
+    /// below it and which (a water body whose region holds the point, else one whose region's sides hold it and whose
+    /// bottom is below it, the lowest index first; or the unbounded water), the surface's height along the water frame's up and
+    /// the point's depth, the surface's normal (by central differences of the heights over 1/1000 of the shortest
+    /// wavelength, 1 mm when the surface has none) and the water's velocity, all in world coordinates. Five height
+    /// queries and one velocity query; no allocation. Safe from several threads at once between steps (surfaces
+    /// answer const calls concurrently), and from event callbacks; not from another thread during stepSimulation.
+    /// @throws std::invalid_argument for a non-finite point
+    btWaterQueryResult queryWater(const btVector3& point) const;
+    /// Draw each water surface as a grid of line segments through `drawer` (drawLine), at the surface's height at
+    /// each grid point at the water's current time, in the water frame: a water body's grid covers its region's
+    /// footprint, the unbounded water's a square of side 2 × halfSize centred below `centre`.
+    /// @param drawer        the user's btIDebugDraw (not owned)
+    /// @param centre        world point the unbounded water's grid is centred on (e.g. the camera), m
+    /// @param halfSize      half the side of the unbounded water's grid, m, finite and > 0
+    /// @param cellsPerSide  grid cells along each side, 1..1024 ((cellsPerSide + 1)² surface points per surface)
+    /// @param colour        the lines' colour (RGB in 0..1)
+    /// @throws std::invalid_argument for a null drawer, a bad halfSize or cellsPerSide
+    void debugDrawWater(btIDebugDraw* drawer, const btVector3& centre = btVector3(0, 0, 0), btScalar halfSize = 50,
+                        int cellsPerSide = 32, const btVector3& colour = btVector3(btScalar(0.2), btScalar(0.5), 1)) const;
+    /// Internal (btBuoyancyAction): deliver `count` events of `action` to the listeners, in order.
+    void dispatchEvents(btBuoyancyAction& action, const btBuoyancyEventType* types, const int* waterBodies, int count,
+                        double submergedFraction);
+    ///@}
+
     /// Internal: actions register and unregister themselves. Returns how many actions registered before this one
     /// (its turn among the bodies for the temporal level of detail; deterministic for a given scene).
     std::uint64_t registerAction(btBuoyancyAction* action);
@@ -234,6 +279,16 @@ private:
     std::vector<btBuoyancyAction*> m_actions;
     std::uint64_t m_registrations = 0;  ///< actions registered so far (never decreases)
     std::unique_ptr<btBuoyancyDeviceBackend> m_device;  ///< batching backend, nullptr = CPU
+    /// @name Events (addEventListener)
+    ///@{
+    std::vector<btBuoyancyEventListener*> m_listeners;  ///< registration order (nullptr: removed during a dispatch)
+    btBuoyancyEventSettings m_eventSettings;
+    bool m_dispatching = false;  ///< listeners are being called
+    bool m_listenersRemoved = false;  ///< some entries of m_listeners were set to nullptr during the dispatch
+    /// The water body whose region holds `point` (world, m), else one whose region but its top face does (lowest
+    /// index first), or −1.
+    int waterBodyAt(const Eigen::Vector3d& point) const;
+    ///@}
     /// @name Threads
     ///@{
     int m_threads = 0;                ///< setThreads (0: the hardware's)
