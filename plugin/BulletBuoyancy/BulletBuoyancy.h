@@ -16,8 +16,8 @@
 #include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
 #include <BulletBuoyancy/bullet/btBuoyancyEvents.h>
 #include <BulletBuoyancy/bullet/btBuoyancyImmediate.h>
-#include <BulletBuoyancy/bullet/btBuoyancyMultiBodyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>
+#include <BulletBuoyancy/bullet/btBuoyancyMultiBodyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>

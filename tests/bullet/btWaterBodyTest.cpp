@@ -237,3 +237,25 @@ TEST_CASE("water bodies: straddling two equal waters is the one water, and half 
     CHECK(double(half.buoyancyForce.y()) == Approx(1000.0 * kGravity * 1.0 * depth).epsilon(1e-3));
     CHECK(double(half.submergedVolume) == Approx(1.0 * depth).epsilon(1e-3));
 }
+
+TEST_CASE("water bodies: a stone resting on a region's bottom keeps its buoyancy", "[bullet][waters]") {
+    // The bed is collision geometry at the region's bottom; the stone (2500 kg/m³) sinks onto it and rests there,
+    // fully under 2.5 m of water. Archimedes: V_sub = V and an upward pressure force ρ g V, resting or not (with the
+    // bottom as a wall for the pressure the stone read V_sub = −0.656 m³ and was pressed down).
+    WaterBodiesWorld w;
+    const btFlatWaterSurface pool(0.0);
+    w.buoyancy.addWaterBody(boxWater("pool", &pool, 1000.0, btVector3(-5, -3, -5), btVector3(5, 0.5, 5)));
+    btStaticPlaneShape bedShape(btVector3(0, 1, 0), btScalar(-3.0));
+    btRigidBody bed(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &bedShape));
+    w.world.addRigidBody(&bed);
+    const Eigen::Vector3d size(1.0, 0.5, 1.0);
+    const std::size_t stone = w.addCrate(2500.0, 0, -2.0, 0, size);
+    w.run(4.0);
+    const btBuoyancyResult& r = w.actions[stone]->getLastResult();
+    INFO("stone centre at y = " << w.centreY(stone) << " m, submerged " << r.submergedVolume << " m3");
+    CHECK(w.centreY(stone) == Approx(-3.0 + 0.25).margin(0.02));  // on the bed
+    CHECK(r.submergedVolume == Approx(size.prod()).epsilon(1e-6));
+    CHECK(double(r.buoyancyForce.y()) == Approx(1000.0 * kGravity * size.prod()).epsilon(1e-4));
+    CHECK(w.actions[stone]->getSubmergedFraction() == Approx(1.0).epsilon(1e-6));
+    w.world.removeRigidBody(&bed);
+}

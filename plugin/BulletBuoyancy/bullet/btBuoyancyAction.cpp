@@ -137,16 +137,17 @@ buoyancy::HydrostaticsResult btBuoyancyAction::submergedClosedForm(const Eigen::
 bool btBuoyancyAction::reachesOnlyWaterBody(std::size_t index, const Eigen::Vector3d& centre, double radius) const {
     const std::vector<btWaterBody>& bodies = m_world->getWaterBodies();
     const btWaterBody& body = bodies[index];
-    // Inside the box's faces but its top (the face whose outward normal is nearest the water frame's up): the water
-    // fills the box up to the surface, whatever is above it.
+    // Inside the box's sides: neither its top (the face whose outward normal is nearest the water frame's up: the
+    // water fills the box up to the surface, whatever is above it) nor its bottom (the bed: a body resting on it, or
+    // pressed a little into it by the contact solver, has water under it, as regionOf says).
     const Eigen::Vector3d up = m_world->getWaterFrame().up();
     int topAxis = 0;
     for (int k = 1; k < 3; ++k)
         if (std::abs(up[k]) > std::abs(up[topAxis])) topAxis = k;
     for (int k = 0; k < 3; ++k) {
-        const bool skipMax = k == topAxis && up[k] > 0, skipMin = k == topAxis && up[k] < 0;
-        if (!skipMin && !(centre[k] - radius >= body.regionMin[k])) return false;
-        if (!skipMax && !(centre[k] + radius <= body.regionMax[k])) return false;
+        if (k == topAxis) continue;
+        if (!(centre[k] - radius >= body.regionMin[k])) return false;
+        if (!(centre[k] + radius <= body.regionMax[k])) return false;
     }
     for (std::size_t i = 0; i < bodies.size(); ++i)
         if (i != index && bodies[i].distanceTo(centre) <= radius) return false;
@@ -154,8 +155,11 @@ bool btBuoyancyAction::reachesOnlyWaterBody(std::size_t index, const Eigen::Vect
 }
 
 buoyancy::WaterRegion btBuoyancyAction::regionOf(const btWaterBody& body) const {
-    // The box's faces but its top, as half-spaces of the water frame: n · p ≤ n · (a point of the face), with the
-    // world's normal and point mapped into the frame.
+    // The box's sides, as half-spaces of the water frame: n · p ≤ n · (a point of the face), with the world's normal
+    // and point mapped into the frame. Not its top (the water ends at its surface) nor its bottom: below the bed the
+    // pressure goes on as if the water did (design.md 2.9). The bed itself is the collision world's business; a body
+    // resting on it, or pressed a little into it, keeps water under it instead of being sucked down by the weight of
+    // the water column above it (with the bottom as a wall, its bottom face had no pressure at all).
     const btWaterFrame& frame = m_world->getWaterFrame();
     const Eigen::Vector3d up = frame.up();
     int topAxis = 0;
@@ -166,7 +170,7 @@ buoyancy::WaterRegion btBuoyancyAction::regionOf(const btWaterBody& body) const 
     region.fluidDensity = body.fluidDensity;
     for (int k = 0; k < 3; ++k)
         for (const double side : {-1.0, 1.0}) {
-            if (k == topAxis && side * up[k] > 0) continue;  // the top face
+            if (k == topAxis) continue;  // the top and the bottom
             const Eigen::Vector3d normal = side * Eigen::Vector3d::Unit(k);
             const Eigen::Vector3d onFace = side > 0 ? body.regionMax : body.regionMin;
             const int i = region.planeCount++;
