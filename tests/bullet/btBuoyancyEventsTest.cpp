@@ -312,6 +312,7 @@ TEST_CASE("water events: a body bobbing about a threshold fires a few events and
         btBuoyancySettings undamped;
         undamped.dragCoefficient = 0;
         undamped.linearDamping = 0;
+        undamped.radiationDamping = 0;
         w.actions[crate]->setSettings(undamped);
         const btBuoyancyAction& action = *w.actions[crate];
         crossings = substeps = 0;

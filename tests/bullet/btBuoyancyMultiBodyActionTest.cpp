@@ -118,6 +118,7 @@ TEST_CASE("multibody: the parts of a straight chain add up to one box of the sam
     noDrag.dragCoefficient = 0;
     noDrag.skinFriction = 0;
     noDrag.linearDamping = 0;
+    noDrag.radiationDamping = 0;
     btBuoyancyImmediate one(&single, noDrag);
     const btBuoyancyResult& r = one.applyBuoyancyImpulse(water, btVector3(0, btScalar(-9.81), 0), 1000.0, 0.0, 1.0 / 240);
 
