@@ -67,7 +67,8 @@ bool btOpenClBuoyancyBackend::hydrostatics(const btBuoyancyAction&, const Eigen:
     return false;
 }
 bool btOpenClBuoyancyBackend::drag(const btBuoyancyAction&, const Eigen::Vector3d&, const Eigen::Vector3d&,
-                                   const Eigen::Vector3d&, Eigen::Vector3d&, Eigen::Vector3d&, Eigen::Vector3d&) {
+                                   const Eigen::Vector3d&, Eigen::Vector3d&, Eigen::Vector3d&, Eigen::Vector3d&,
+                                   double&) {
     return false;
 }
 std::string btOpenClBuoyancyBackend::describe() const { return "OpenCL: not built"; }
