@@ -51,6 +51,9 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_REL
 # sanitizer and FPE runs no longer run them either: among them the 1,000-boat scaling row (over 64 s of CPU in Release).
 mapfile -t asan_targets < <(cmake --build build-asan --target help | grep -oE '\btests_[a-z_]+' | grep -vx tests_threads |
                             sort -u)
+# The example programs that a test starts (tests/CMakeLists.txt registers their tests whenever the target exists).
+mapfile -t -O "${#asan_targets[@]}" asan_targets < <(cmake --build build-asan --target help |
+                                                      grep -oE '\b[a-z_]+_example\b' | sort -u)
 echo "targets: ${asan_targets[*]}"
 cmake --build build-asan -j"$jobs" --target "${asan_targets[@]}"
 lap "sanitizer build"
