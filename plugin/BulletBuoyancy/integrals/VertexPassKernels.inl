@@ -31,15 +31,18 @@ BB_VM_INLINE V interpolate(const WaterPatch::CellGrid& g, const V& x, const V& z
         tv[l] = vc[l] - cj;
         cell[l] = 16 * ((cj - 1) * perRow + (ci - 1));
     }
-    const V a0 = ((gatherLanes(coef + 12, cell) * tu + gatherLanes(coef + 8, cell)) * tu +
-                  gatherLanes(coef + 4, cell)) * tu + gatherLanes(coef + 0, cell);
-    const V a1 = ((gatherLanes(coef + 13, cell) * tu + gatherLanes(coef + 9, cell)) * tu +
-                  gatherLanes(coef + 5, cell)) * tu + gatherLanes(coef + 1, cell);
-    const V a2 = ((gatherLanes(coef + 14, cell) * tu + gatherLanes(coef + 10, cell)) * tu +
-                  gatherLanes(coef + 6, cell)) * tu + gatherLanes(coef + 2, cell);
-    const V a3 = ((gatherLanes(coef + 15, cell) * tu + gatherLanes(coef + 11, cell)) * tu +
-                  gatherLanes(coef + 7, cell)) * tu + gatherLanes(coef + 3, cell);
-    return ((a3 * tv + a2) * tv + a1) * tv + a0;
+    // Lane by lane, the cell's 16 coefficients read as four rows of 4 (contiguous loads, no per-lane inserts):
+    // a_j = ((C[12+j] tu + C[8+j]) tu + C[4+j]) tu + C[j] for the four j at once, then the cubic in tv, with the
+    // operations (and so the roundings) of WaterPatch::height.
+    V f;
+    for (int l = 0; l < N; ++l) {
+        const double* C = coef + cell[l];
+        const v4d u4 = splat<v4d>(tu[l]);
+        const v4d a = ((load<v4d>(C + 12) * u4 + load<v4d>(C + 8)) * u4 + load<v4d>(C + 4)) * u4 + load<v4d>(C);
+        const double w = tv[l];
+        f[l] = ((a[3] * w + a[2]) * w + a[1]) * w + a[0];
+    }
+    return f;
 }
 
 /// Pass 1 for the vertices [0, n − n mod N) (vertexDepthsOnPatch); returns the first vertex not done, or SIZE_MAX when
