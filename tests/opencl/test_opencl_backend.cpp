@@ -273,6 +273,68 @@ TEST_CASE("OpenCL: an unknown water surface type falls back to the CPU with a re
     }
 }
 
+namespace {
+/// A user's own surface class (none of the library's) that describes itself for the device as a height grid: the
+/// tilted plane 0.02 x − 0.01 z sampled every 0.5 m over [−16, 16]², whose bilinear interpolation is the plane itself.
+class DescribedPlane : public TiltedPlane {
+public:
+    bool describeForDevice(double, btWaterDeviceDescription& out) const override {
+        out.kind = btWaterDeviceDescription::Kind::HeightGrid;
+        out.sizeX = out.sizeZ = 65;
+        out.spacing = 0.5;
+        out.originX = out.originZ = -16.0;
+        out.periodic = false;
+        out.heights.resize(65 * 65);
+        for (int j = 0; j < 65; ++j)
+            for (int i = 0; i < 65; ++i) out.heights[std::size_t(j * 65 + i)] = 0.02 * (-16.0 + 0.5 * i) - 0.01 * (-16.0 + 0.5 * j);
+        out.velocityX.clear();
+        out.velocityY.clear();
+        out.velocityZ.clear();
+        out.velocityOnDevice = true;  // still water, as its CPU queries say
+        return true;
+    }
+};
+/// A user's surface whose description is inconsistent (fewer heights than its grid has samples).
+class BadlyDescribedPlane : public DescribedPlane {
+public:
+    bool describeForDevice(double t, btWaterDeviceDescription& out) const override {
+        DescribedPlane::describeForDevice(t, out);
+        out.heights.resize(100);
+        return true;
+    }
+};
+}  // namespace
+
+TEST_CASE("OpenCL: a user's surface that describes itself as a height grid is evaluated on the device", "[opencl]") {
+    DescribedPlane plane;
+    BulletTestWorld w(&plane);
+    Scene scene;
+    scene.populate(w);
+    btOpenClBuoyancyBackend* backend = installTestBackend(w.water(), btOpenClOptions::Precision::Double);
+    if (!backend) return;
+    std::vector<btBuoyancyResult> cpu, dev;
+    std::uint64_t answered = 0;
+    evaluateBoth(w.world(), w.water(), *backend, kDt, cpu, dev, answered);
+    CHECK(answered > 0);
+    CHECK(backend->lastFallbackReason().empty());
+    compareWorld(w, *backend, scene, 1e-9, "a described user surface, double");
+}
+
+TEST_CASE("OpenCL: an inconsistent height-grid description falls back to the CPU and says why", "[opencl]") {
+    BadlyDescribedPlane plane;
+    BulletTestWorld w(&plane);
+    Scene scene;
+    scene.populate(w);
+    btOpenClBuoyancyBackend* backend = installTestBackend(w.water(), btOpenClOptions::Precision::Auto);
+    if (!backend) return;
+    std::vector<btBuoyancyResult> cpu, dev;
+    std::uint64_t answered = 0;
+    evaluateBoth(w.world(), w.water(), *backend, kDt, cpu, dev, answered);
+    CHECK(answered == 0);
+    CHECK(backend->lastFallbackReason().find("height-grid description is inconsistent") != std::string::npos);
+    for (std::size_t i = 0; i < cpu.size(); ++i) CHECK(cpu[i].buoyancyForce == dev[i].buoyancyForce);
+}
+
 TEST_CASE("OpenCL double: trajectories stay close to the CPU's over 3 s of waves", "[opencl][slow]") {
     std::vector<btGerstnerWave> waves(1);
     waves[0].amplitude = 0.2;

@@ -15,9 +15,6 @@
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/integrals/DragClusters.h>
-#include <BulletBuoyancy/water/btFftOceanSurface.h>
-#include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
-#include <BulletBuoyancy/water/btGridWaterSurface.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
@@ -28,6 +25,7 @@
 #include <limits>
 #include <mutex>
 #include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 #if BULLET_BUOYANCY_HAVE_OPENCL
@@ -166,6 +164,7 @@ struct btOpenClBuoyancyBackend::Impl {
     DeviceBuffer dParams, dTiles, dBodyTiles, dPartials, dOut, dWater, dGrid;
     int waterType = kWaterFlat;
     bool waterDrag = true;
+    btWaterDeviceDescription waterDescription;  ///< the water's last description (packWater)
     std::vector<double> wp, grid;
 
     // ---- transfers in the device's scalar ----
@@ -217,69 +216,66 @@ struct btOpenClBuoyancyBackend::Impl {
     }
 
     // ---- water on the device (kernels/water.cl) ----
-    /// Pack the world's water at time t; false (and `fallback`) when the surface type is not supported.
+    /// Pack the world's water at time t from its own description (btWaterSurface::describeForDevice); false (and
+    /// `fallback`, the surface's reason) when it is not one of the kinds the kernels evaluate.
     bool packWater(const btWaterSurface& water, double t) {
         wp.assign(8, 0.0);
         grid.clear();
         waterDrag = true;
-        if (auto* flat = dynamic_cast<const btFlatWaterSurface*>(&water)) {
-            waterType = kWaterFlat;
-            double x = 0, y = 0, z = 0, vx = 0, vy = 0, vz = 0;
-            flat->velocities(&x, &y, &z, 1, t, &vx, &vy, &vz);  // the uniform current
-            wp[0] = flat->level();
-            wp[1] = vx;
-            wp[2] = vz;
-            return true;
+        btWaterDeviceDescription& d = waterDescription;  // reused: its vectors keep their storage
+        if (!water.describeForDevice(t, d)) {
+            fallback = d.reason.empty() ? std::string("water: the surface did not describe itself for the device")
+                                        : d.reason;
+            return false;
         }
-        if (auto* g = dynamic_cast<const btGerstnerWaterSurface*>(&water)) {
-            const std::vector<double> c = g->packedWaveConstants();
-            const std::size_t m = c.size() / 7;
+        switch (d.kind) {
+        case btWaterDeviceDescription::Kind::Flat:
+            waterType = kWaterFlat;
+            wp[0] = d.level;
+            wp[1] = d.currentX;
+            wp[2] = d.currentZ;
+            return true;
+        case btWaterDeviceDescription::Kind::Gerstner: {
+            const std::size_t m = d.waveConstants.size() / 7;
             waterType = kWaterGerstner;
             const double tol = dbl ? 1e-9 : 2e-5;  // btGerstnerWaterSurface's residual; float: a few ulps of 10 m
             wp.assign(8 + 8 * m, 0.0);
-            wp[0] = g->meanLevel();
+            wp[0] = d.meanLevel;
             wp[1] = double(m);
             wp[2] = tol * tol;
-            wp[3] = double(btGerstnerWaterSurface::kMaxIterations);
+            wp[3] = double(d.maxIterations);
             for (std::size_t i = 0; i < m; ++i)
-                for (int k = 0; k < 7; ++k) wp[8 + 8 * i + k] = c[7 * i + k];
+                for (int k = 0; k < 7; ++k) wp[8 + 8 * i + k] = d.waveConstants[7 * i + k];
             return true;
         }
-        if (auto* g = dynamic_cast<const btGridWaterSurface*>(&water)) {
-            waterType = kWaterGrid;
-            wp[0] = g->sizeX();
-            wp[1] = g->sizeZ();
-            wp[2] = g->spacing();
-            wp[3] = g->originX();
-            wp[4] = g->originZ();
-            wp[5] = g->isPeriodic() ? 1 : 0;
-            const bool vel = !g->velocitySamplesX().empty();
-            wp[6] = vel ? 1 : 0;
-            grid = g->heightSamples();
-            if (vel)
-                for (auto* f : {&g->velocitySamplesX(), &g->velocitySamplesY(), &g->velocitySamplesZ()})
-                    grid.insert(grid.end(), f->begin(), f->end());
-            return true;
-        }
-        if (auto* f = dynamic_cast<const btFftOceanSurface*>(&water)) {
-            if (f->settings().choppiness > 0) {
-                fallback = "water: a choppy FFT ocean (choppiness > 0) is not evaluated on the device";
+        case btWaterDeviceDescription::Kind::HeightGrid: {
+            const std::size_t n = std::size_t(std::max(d.sizeX, 0)) * std::size_t(std::max(d.sizeZ, 0));
+            const bool vel = !d.velocityX.empty();
+            if (d.sizeX < 2 || d.sizeZ < 2 || !(d.spacing > 0) || d.heights.size() != n ||
+                (vel && (d.velocityX.size() != n || d.velocityY.size() != n || d.velocityZ.size() != n))) {
+                fallback = "water: the surface's height-grid description is inconsistent (sizes " +
+                           std::to_string(d.sizeX) + " x " + std::to_string(d.sizeZ) + ", " +
+                           std::to_string(d.heights.size()) + " heights); its bodies use the CPU path";
                 return false;
             }
-            // η sampled on the N×N grid at (i·L/N, j·L/N), periodic, bilinear: btFftOceanSurface::sampleField.
-            const int n = f->settings().resolution;
             waterType = kWaterGrid;
-            wp[0] = n;
-            wp[1] = n;
-            wp[2] = f->settings().patchSize / n;
-            wp[5] = 1;
-            grid = f->elevationField(t);
-            for (double& h : grid) h += f->settings().height;
-            waterDrag = false;  // its velocity fields are not exposed: drag stays on the CPU
+            wp[0] = d.sizeX;
+            wp[1] = d.sizeZ;
+            wp[2] = d.spacing;
+            wp[3] = d.originX;
+            wp[4] = d.originZ;
+            wp[5] = d.periodic ? 1 : 0;
+            wp[6] = vel ? 1 : 0;
+            grid.swap(d.heights);
+            if (vel)
+                for (auto* f : {&d.velocityX, &d.velocityY, &d.velocityZ}) grid.insert(grid.end(), f->begin(), f->end());
+            waterDrag = d.velocityOnDevice;
             return true;
         }
-        fallback = std::string("water: surface type not evaluated on the device (flat, Gerstner, grid and non-choppy "
-                               "FFT are); its bodies use the CPU path");
+        case btWaterDeviceDescription::Kind::None:
+            break;
+        }
+        fallback = d.reason.empty() ? std::string("water: the surface did not describe itself for the device") : d.reason;
         return false;
     }
 

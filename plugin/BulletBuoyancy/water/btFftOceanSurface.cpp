@@ -328,3 +328,25 @@ double btFftOceanSurface::heightThirdDerivativeScale(double t) const {
     withFields(t, false, [&] { scale = m_thirdDerivativeScale; });
     return std::isfinite(scale) ? scale : 0.0;
 }
+
+bool btFftOceanSurface::describeForDevice(double t, btWaterDeviceDescription& out) const {
+    if (m_s.choppiness > 0) {
+        out.kind = btWaterDeviceDescription::Kind::None;
+        out.reason = "water: a choppy FFT ocean (choppiness > 0) is not evaluated on the device";
+        return false;
+    }
+    // η sampled on the N×N grid at (i·L/N, j·L/N), periodic, bilinear: sampleField.
+    out.kind = btWaterDeviceDescription::Kind::HeightGrid;
+    out.reason.clear();
+    out.sizeX = out.sizeZ = m_s.resolution;
+    out.spacing = m_s.patchSize / m_s.resolution;
+    out.originX = out.originZ = 0.0;
+    out.periodic = true;
+    out.heights = elevationField(t);
+    for (double& h : out.heights) h += m_s.height;
+    out.velocityX.clear();
+    out.velocityY.clear();
+    out.velocityZ.clear();
+    out.velocityOnDevice = false;  // its velocity fields are not part of the description: drag stays on the CPU
+    return true;
+}

@@ -65,6 +65,7 @@ public:
     double heightThirdDerivativeScale(double t) const override;
     /// Without choppiness the height is the bilinear lookup of the N×N samples: the lattice of spacing L/N through
     /// the origin. With choppiness the lookup is at the inverted rest position: not bilinear in x, z (false).
+    bool describeForDevice(double t, btWaterDeviceDescription& out) const override;
     bool bilinearLattice(double t, btWaterLattice& out) const override;
 
     /// Variance density Ψ(kx, kz) of the spectrum chosen, m⁴ (see the file comment).

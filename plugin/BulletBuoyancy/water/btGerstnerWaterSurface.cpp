@@ -563,3 +563,12 @@ bool btGerstnerWaterSurface::isFlat(double, double& outHeight) const {
     outHeight = m_height;
     return !(m_amplitudeSum > 0);
 }
+
+bool btGerstnerWaterSurface::describeForDevice(double, btWaterDeviceDescription& out) const {
+    out.kind = btWaterDeviceDescription::Kind::Gerstner;
+    out.reason.clear();
+    out.meanLevel = meanLevel();
+    out.waveConstants = packedWaveConstants();
+    out.maxIterations = kMaxIterations;
+    return true;
+}

@@ -75,6 +75,7 @@ public:
     /// Σ A_i k_i³ / (1 − Σ Q_i A_i k_i)²: a wave's third derivative is A k³ at Q = 0 and grows near steep crests as
     /// the horizontal map x₀ → x compresses (its Jacobian is ≥ 1 − Σ Q A k; design.md 2.8).
     double heightThirdDerivativeScale(double t) const override;
+    bool describeForDevice(double t, btWaterDeviceDescription& out) const override;
 
     /// Forward parametric surface: the point (x, y, z) of the particle at rest position (x0, z0) at time t, m.
     void surfacePoint(double x0, double z0, double t, double& outX, double& outY, double& outZ) const;

@@ -117,3 +117,20 @@ void btGridWaterSurface::heightBounds(double minX, double minZ, double maxX, dou
     outMin = lo;
     outMax = hi;
 }
+
+bool btGridWaterSurface::describeForDevice(double, btWaterDeviceDescription& out) const {
+    out.kind = btWaterDeviceDescription::Kind::HeightGrid;
+    out.reason.clear();
+    out.sizeX = m_nx;
+    out.sizeZ = m_nz;
+    out.spacing = m_spacing;
+    out.originX = m_originX;
+    out.originZ = m_originZ;
+    out.periodic = m_periodic;
+    out.heights.assign(m_h.begin(), m_h.end());
+    out.velocityX.assign(m_vx.begin(), m_vx.end());
+    out.velocityY.assign(m_vy.begin(), m_vy.end());
+    out.velocityZ.assign(m_vz.begin(), m_vz.end());
+    out.velocityOnDevice = true;
+    return true;
+}

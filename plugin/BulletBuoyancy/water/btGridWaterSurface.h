@@ -41,6 +41,7 @@ public:
                       double& outMax) const override;
     bool isTimeVarying() const override { return m_timeVarying; }
     /// The sample lattice (bilinear in every cell; outside a clamped grid the edge values hold, still bilinear).
+    bool describeForDevice(double t, btWaterDeviceDescription& out) const override;
     bool bilinearLattice(double t, btWaterLattice& out) const override {
         (void)t;
         out.originX = m_originX;

@@ -38,3 +38,19 @@ bool btFlatWaterSurface::isFlat(double, double& outHeight) const {
     outHeight = m_height;
     return true;
 }
+
+bool btWaterSurface::describeForDevice(double, btWaterDeviceDescription& out) const {
+    out.kind = btWaterDeviceDescription::Kind::None;
+    out.reason = "water: surface type not evaluated on the device (flat, Gerstner, grid and non-choppy FFT are); its "
+                 "bodies use the CPU path";
+    return false;
+}
+
+bool btFlatWaterSurface::describeForDevice(double, btWaterDeviceDescription& out) const {
+    out.kind = btWaterDeviceDescription::Kind::Flat;
+    out.reason.clear();
+    out.level = m_height;
+    out.currentX = m_currentX;
+    out.currentZ = m_currentZ;
+    return true;
+}

@@ -4,6 +4,8 @@
 /// Bodies query it once per substep in batch form, so a surface costs one virtual call per body, not one
 /// per sample. World y is up; the water is a height field y = f(x, z, t).
 
+#include <BulletBuoyancy/water/btWaterDeviceDescription.h>
+
 #include <cstddef>
 #include <vector>
 
@@ -107,6 +109,12 @@ public:
         return false;
     }
 
+    /// Describe the surface at time t for a device backend (btWaterDeviceDescription): fill `out` as one of the kinds the
+    /// device evaluates and return true, or return false with `out.reason` set (its bodies then use the CPU).
+    /// `out` may hold a previous description: every field of the kind returned is written (reusing its storage).
+    /// Default: false, "surface type not evaluated on the device".
+    virtual bool describeForDevice(double t, btWaterDeviceDescription& out) const;
+
     /// Convenience single-point query, m.
     double height(double x, double z, double t) const {
         double h = 0;
@@ -129,6 +137,7 @@ public:
     void heightBounds(double minX, double minZ, double maxX, double maxZ, double t, double& outMin,
                       double& outMax) const override;
     bool isFlat(double t, double& outHeight) const override;
+    bool describeForDevice(double t, btWaterDeviceDescription& out) const override;
 
     /// Water level, m.
     double level() const { return m_height; }
