@@ -11,6 +11,7 @@ Rules (docs/design.md, "Folders and layers"):
   3. Every include of one of the library's headers, anywhere in the repository (library, examples, tests, fuzz
      targets), is written <BulletBuoyancy/folder/File.h>.
   4. No two folders include each other, directly or around a longer circle (library and examples alike).
+  5. Every test source (a .cpp below tests/ that defines Catch test cases) is named <Unit>Test.cpp.
 """
 import os
 import re
@@ -115,6 +116,13 @@ def check(root):
                     a, b = folder_of(root, path), folder_of(root, target)
                     if a != b:
                         edges.setdefault(a, {}).setdefault(b, where)
+    # Rule 5: one naming style for the test sources.
+    for path in source_files(root, 'tests'):
+        name = os.path.basename(path)
+        if name.endswith('.cpp') and not name.endswith('Test.cpp') and \
+                re.search(r'^\s*(TEST_CASE|SCENARIO|TEMPLATE_TEST_CASE)\s*\(', open(path, encoding='utf-8',
+                                                                             errors='replace').read(), re.M):
+            problems.append('%s: a test source is named <Unit>Test.cpp' % os.path.relpath(path, root))
     # Rule 4: circles between folders (Tarjan's strongly connected components).
     for comp in strongly_connected(edges):
         if len(comp) > 1:
@@ -193,6 +201,8 @@ def self_test():
         'unknown folder': ({'plugin/BulletBuoyancy/misc/X.h': '#pragma once\n'}, 'a folder the layering does not know'),
         'circle': ({'bullet_examples/a/A.h': '#include "b/B.h"\n', 'bullet_examples/b/B.h': '#include "a/A.h"\n'},
                    'folders include each other in a circle'),
+        'test naming': ({'tests/mesh/test_mesh.cpp': 'TEST_CASE("a mesh", "[mesh]") {}\n'},
+                        'a test source is named <Unit>Test.cpp'),
     }
     failures = 0
     base = check(tree(good))

@@ -110,8 +110,8 @@ struct btBuoyancySettings {
     /// Measured on the benchmark's 3,400-triangle boat in its 4-wave sea at 240 substeps/s against exact wave queries
     /// (docs/benchmarks/temporal_lod.csv): the default predicts ≈ 84 % of the substeps and leaves the force error's
     /// mean and 99th percentile where exact evaluation has them (the wave patch's). Energy: an undamped bobbing box
-    /// and sphere and a rolling box keep theirs within 0.14 % a minute (tests/bullet/test_temporal_lod.cpp,
-    /// test_dynamics.cpp).
+    /// and sphere and a rolling box keep theirs within 0.14 % a minute (tests/bullet/TemporalLodTest.cpp,
+    /// DynamicsTest.cpp).
     int hydrostaticsInterval = 0;
     /// Largest prediction error accepted by hydrostaticsInterval's checks, as a fraction of the body's full
     /// buoyancy ρ g V (force; a force error of x is a submerged-volume error of x·V) and of ρ g V × its bounding

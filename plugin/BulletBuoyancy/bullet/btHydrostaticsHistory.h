@@ -124,7 +124,7 @@ private:
 /// attitudes), the slab of water it leaves changes the volume by −∫ that dA and the torque by ρ g ∫ (z', ·, −x') × that
 /// dA, and the submerged part turns with the body (its buoyancy acts through the turned centre of buoyancy). Heave
 /// through waterline_area always; roll and pitch only when hydrostatics.waterplane.valid. Exact to first order in
-/// the pose change (tests/bullet/test_temporal_lod.cpp checks it against exact evaluations).
+/// the pose change (tests/bullet/TemporalLodTest.cpp checks it against exact evaluations).
 /// @param rhoG  ρ g, N/m³
 void btHydrostaticStiffnessCorrection(btHydrostaticsSnapshot& predicted, const Eigen::Vector3d& com,
                                       const Eigen::Matrix3d& rotation, double rhoG);

@@ -148,7 +148,7 @@ HydrostaticsResult treeHydrostatics(const MeshMomentTree& tree, const TriangleMe
     // There, a mesh fine against the water's curvature keeps the plane through each triangle's corner heights: over a
     // triangle of size h that plane is off by at most K₂h²/8 (K₂ the patch's curvature), so its volume error over the
     // wet area is ≲ K₂h²/(8 T) of V (T the mean thickness V/A). Measured against the divergence-theorem reference in
-    // the scaling sea (tests/bench/test_wave_methods.cpp, "fine meshes"): the 850-triangle boat, estimate 0.0051,
+    // the scaling sea (tests/bench/WaveMethodsTest.cpp, "fine meshes"): the 850-triangle boat, estimate 0.0051,
     // plane 0.100 % of V worst, curved 0.006 % at 7× the time; the 3,400-triangle boat, estimate 0.0013, plane 0.026 %,
     // curved 0.003 % at 15× the time. So the plane is kept while the estimate is ≤ kPlaneWaterTolerance, on meshes of
     // at least kPlaneWaterMinTriangles triangles: the median leaf does not stand for a low-poly mesh's long slivers

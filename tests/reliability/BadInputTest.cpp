@@ -1,7 +1,7 @@
 // The bad-input catalogue (docs/bad-input.md): every way a mesh, shape, setting, body, world,
 // time step or scene can be wrong, with the exact error it gets, and the check that nothing is
 // half-applied (a rejected call leaves the object as it was). The broken mesh *files* of prepareMesh are
-// catalogued in tests/mesh/MeshRepairTests.cpp; here are the in-memory cases and everything downstream.
+// catalogued in tests/mesh/MeshRepairTest.cpp; here are the in-memory cases and everything downstream.
 // Expected messages are the documented contract (docs/bad-input.md), written by hand.
 
 #include "reliability/ReliabilityHelpers.h"

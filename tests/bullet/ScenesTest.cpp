@@ -1,6 +1,6 @@
 // Every shipped scene (bullet_examples/scenes/*.json) through the runner with its expected outcome against
 // an analytic oracle; the default primitive resolution against the analytic volumes; the substep count not
-// changing a dynamic motion. (hard_cases.json is covered by test_run_command.cpp.)
+// changing a dynamic motion. (hard_cases.json is covered by RunCommandTest.cpp.)
 #include <unistd.h>
 #include "oracles/BulletTestWorld.h"
 #include "cli/RunCommand.h"

@@ -315,7 +315,7 @@ TEST_CASE("water mass properties: free surface and composition vs a direct compu
     WaterGraph g;
     g.nodes = {sphereNode("a", {1, 0, 0}, 0.2, 0.1), sphereNode("b", {-1, 0.5, 0.3}, 0.1, 0.1),
                sphereNode("c", {0, -0.4, -0.6}, 0.3, 0.05)};
-    g.inertia = WaterInertiaModel::PointMass;  // paper eq. 17 (the shape model is tested in test_node_inertia.cpp)
+    g.inertia = WaterInertiaModel::PointMass;  // paper eq. 17 (the shape model is tested in NodeInertiaTest.cpp)
     WaterGraphState s(g);
     const Eigen::Isometry3d pose(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()));
     s.setPose(pose);
