@@ -11,6 +11,7 @@
 #include <BulletBuoyancy/water/btFftOceanSurface.h>
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 #include <BulletBuoyancy/water/btGridWaterSurface.h>
+#include <BulletBuoyancy/water/btRiverSurface.h>
 
 #include <catch2/catch.hpp>
 
@@ -258,6 +259,30 @@ public:
 TEST_CASE("OpenCL: an unknown water surface type falls back to the CPU with a reason, same results", "[opencl]") {
     TiltedPlane plane;
     BulletTestWorld w(&plane);
+    Scene scene;
+    scene.populate(w);
+    btOpenClBuoyancyBackend* backend = installTestBackend(w.water(), btOpenClOptions::Precision::Auto);
+    if (!backend) return;
+    std::vector<btBuoyancyResult> cpu, dev;
+    std::uint64_t answered = 0;
+    evaluateBoth(w.world(), w.water(), *backend, kDt, cpu, dev, answered);
+    CHECK(answered == 0);
+    CHECK(backend->lastFallbackReason().find("not evaluated on the device") != std::string::npos);
+    for (std::size_t i = 0; i < cpu.size(); ++i) {
+        CHECK(cpu[i].buoyancyForce == dev[i].buoyancyForce);
+        CHECK(cpu[i].dragForce == dev[i].dragForce);
+    }
+}
+
+TEST_CASE("OpenCL: a river is not taken for uniform flat water: it falls back to the CPU with a reason", "[opencl]") {
+    // The river is flat (isFlat) but its current varies with position: the device knows only btFlatWaterSurface's one
+    // uniform current, so the river's bodies must stay on the CPU path, with the CPU's forces.
+    btRiverSettings rs;
+    rs.centreline = {{-10.0, -1.0}, {0.0, 0.0}, {10.0, 3.0}};
+    rs.width = 6.0;
+    rs.surfaceSpeed = 1.2;
+    const btRiverSurface river(rs);
+    BulletTestWorld w(&river);
     Scene scene;
     scene.populate(w);
     btOpenClBuoyancyBackend* backend = installTestBackend(w.water(), btOpenClOptions::Precision::Auto);
