@@ -239,3 +239,22 @@ TEST_CASE("river: a crate released at rest drifts up to the current and one besi
     CHECK(double(p.z()) == Approx(10.0).margin(1e-3));
     CHECK(double(w.rigid(ashore)->getLinearVelocity().length()) < 1e-3);
 }
+
+TEST_CASE("river: the world's water query reports the local current", "[water][river][bullet]") {
+    btRiverSettings s;
+    s.height = 0.5;
+    s.width = 8.0;
+    s.surfaceSpeed = 1.5;
+    s.centreline = {{-50.0, 0.0}, {50.0, 0.0}};
+    const btRiverSurface river(s);
+    buoyancy_test::BulletTestWorld w(&river);
+    const btWaterQueryResult inChannel = w.water().queryWater(btVector3(3, 0, 2));  // d = w/4, 0.5 m deep
+    CHECK(inChannel.inWater);
+    CHECK(double(inChannel.depth) == Approx(0.5).margin(1e-6));
+    CHECK(double(inChannel.velocity.x()) == Approx(0.75 * 1.5).epsilon(1e-6));
+    CHECK(double(inChannel.velocity.y()) == 0.0);
+    CHECK(double(inChannel.velocity.z()) == Approx(0.0).margin(1e-6));
+    const btWaterQueryResult onBank = w.water().queryWater(btVector3(3, 0, 6));  // beside the channel: still
+    CHECK(onBank.inWater);
+    CHECK(onBank.velocity.length() == 0);
+}
