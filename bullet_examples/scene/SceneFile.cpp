@@ -255,6 +255,38 @@ void readHeightCsv(const Reader& r, const std::string& path, const std::string& 
     if (w.gridNx < 2 || w.gridNz < 2) r.fail(key, path + ": needs at least 2 rows of at least 2 values");
 }
 
+/// A "river" water object's own keys into `out` (its level `height`, m, already read): "centreline" (at least 2
+/// [x, z] points, upstream first, no point repeating the one before), "width" (m, > 0) and "speed" (the surface speed
+/// on the centreline, m/s, ≥ 0), all required. The surface's own checks run too (btRiverSurface).
+void readRiver(const Reader& r, const json& w, double height, btRiverSettings& out) {
+    if (!w.contains("centreline")) r.fail("water.centreline", "missing (an array of at least 2 [x, z] points, m, upstream first)");
+    const json& c = w["centreline"];
+    if (!c.is_array() || c.size() < 2)
+        r.fail("water.centreline", "expected an array of at least 2 [x, z] points, m, upstream first");
+    out.centreline.clear();
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        const std::string key = "water.centreline[" + std::to_string(i) + "]";
+        const Eigen::Vector2d p = vec2(r, c[i], key, -kBig, kBig);
+        if (i > 0 && std::hypot(p.x() - out.centreline.back().x, p.y() - out.centreline.back().z) < 1e-6)
+            r.fail(key, "repeats centreline[" + std::to_string(i - 1) + "]: consecutive points must be at least 1e-6 m "
+                        "apart");
+        out.centreline.push_back({p.x(), p.y()});
+    }
+    if (!w.contains("width")) r.fail("water.width", "missing (the channel's width, m, > 0)");
+    out.width = r.number(w["width"], "water.width", 0.0, kBig, true);
+    if (!w.contains("speed")) r.fail("water.speed", "missing (the surface speed on the centreline, m/s, >= 0)");
+    if (w["speed"].is_number() && w["speed"].get<double>() < 0)
+        r.fail("water.speed", "must be >= 0 m/s (the current runs from the first centreline point to the last: "
+                              "list the points the other way round to reverse it)");
+    out.surfaceSpeed = r.number(w["speed"], "water.speed", 0.0, kBig);
+    out.height = height;
+    try {  // every field checked by the surface itself too
+        btRiverSurface check(out);
+    } catch (const std::invalid_argument& e) {
+        r.fail("water", e.what());
+    }
+}
+
 /// Scene::waterFrame from "water.frame" (up, x, origin; each optional) and the scene's gravity: up defaults to
 /// −gravity (+y for a zero gravity), x to btWaterFrame::fromUp's choice. Refuses an x not perpendicular to up and an up
 /// not antiparallel to a non-zero gravity (1e-6 rad), naming both vectors.
@@ -303,7 +335,9 @@ void readWater(const Reader& r, const json& w, Scene& s, const std::string& dire
     else if (t == "interactive")
         r.allowKeys(w, "water",
                     {"type", "height", "density", "size", "centre", "resolution", "wave_speed", "damping", "frame"});
-    else r.fail("water.type", "unknown value \"" + t + "\" (flat, gerstner, grid, fft or interactive)");
+    else if (t == "river")
+        r.allowKeys(w, "water", {"type", "height", "density", "centreline", "width", "speed", "frame"});
+    else r.fail("water.type", "unknown value \"" + t + "\" (flat, gerstner, grid, fft, interactive or river)");
     if (w.contains("height")) s.waterHeight = r.number(w["height"], "water.height", -kBig, kBig);
     if (w.contains("density")) s.waterDensity = r.number(w["density"], "water.density", 0.0, 1e5, true);
     const double g = s.gravity.norm();  // the waves' dispersion: |g| (9.81 when the scene has none)
@@ -392,6 +426,8 @@ void readWater(const Reader& r, const json& w, Scene& s, const std::string& dire
         if (w.contains("damping")) out.damping = r.number(w["damping"], "water.damping", 0.0, 1e3);
         const double dx = out.size.x() / out.resolution;
         if (out.size.y() / dx > 4096.5) r.fail("water.size", "more than 4096 cells along z at this resolution");
+    } else if (t == "river") {
+        readRiver(r, w, s.waterHeight, out.river);
     }
 }
 

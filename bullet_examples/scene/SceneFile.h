@@ -9,6 +9,7 @@
 #include <BulletBuoyancy/bullet/btWaterFrame.h>
 #include <BulletBuoyancy/water/btFftOceanSurface.h>
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btRiverSurface.h>
 #include "scene/SceneGraph.h"
 
 #include <Eigen/Core>
@@ -53,7 +54,7 @@ struct SceneBody {
 /// The "water" block: which surface and its parameters (docs/scene-format.md lists keys and defaults).
 /// Level and density live in Scene::waterHeight / Scene::waterDensity.
 struct SceneWater {
-    std::string type = "flat";                     ///< "flat", "gerstner", "grid", "fft", "interactive"
+    std::string type = "flat";                     ///< "flat", "gerstner", "grid", "fft", "interactive", "river"
     Eigen::Vector2d current = Eigen::Vector2d::Zero(); ///< flat: uniform current [vx, vz], m/s
     std::vector<btGerstnerWave> waves;             ///< gerstner
     std::string gridFile;                          ///< grid: CSV path (resolved), rows = z, columns = x
@@ -63,6 +64,7 @@ struct SceneWater {
     double gridSpacing = 1.0;                      ///< grid: m
     bool gridPeriodic = true;                      ///< grid: wrap (true) or clamp
     btFftOceanSettings fft;                        ///< fft (height and gravity filled from the scene)
+    btRiverSettings river;                         ///< river: centreline, width, speed (height filled from the scene)
     Eigen::Vector2d size = Eigen::Vector2d(20, 20); ///< interactive: extent [x, z], m
     Eigen::Vector2d centre = Eigen::Vector2d::Zero(); ///< interactive: world centre [x, z], m
     int resolution = 128;                          ///< interactive: cells along x

@@ -6,6 +6,7 @@
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 #include <BulletBuoyancy/water/btGridWaterSurface.h>
 #include <BulletBuoyancy/water/btInteractiveWaterSurface.h>
+#include <BulletBuoyancy/water/btRiverSurface.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <stdexcept>
@@ -31,6 +32,10 @@ SceneWaterSurface makeSurface(const SceneWater& w, double height, double g) {
                                                                  w.centre.y());
             out.interactive = s.get();
             out.surface = std::move(s);
+        } else if (w.type == "river") {
+            btRiverSettings river = w.river;
+            river.height = height;
+            out.surface = std::make_unique<btRiverSurface>(river);
         } else {
             out.surface = std::make_unique<btFlatWaterSurface>(height, w.current.x(), w.current.y());
         }

@@ -34,6 +34,7 @@
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 #include <BulletBuoyancy/water/btGridWaterSurface.h>
 #include <BulletBuoyancy/water/btInteractiveWaterSurface.h>
+#include <BulletBuoyancy/water/btRiverSurface.h>
 #include <BulletBuoyancy/water/btWaterDeviceDescription.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 

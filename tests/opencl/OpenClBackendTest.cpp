@@ -11,6 +11,7 @@
 #include <BulletBuoyancy/water/btFftOceanSurface.h>
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 #include <BulletBuoyancy/water/btGridWaterSurface.h>
+#include <BulletBuoyancy/water/btRiverSurface.h>
 
 #include <catch2/catch.hpp>
 
@@ -333,6 +334,31 @@ TEST_CASE("OpenCL: an inconsistent height-grid description falls back to the CPU
     CHECK(answered == 0);
     CHECK(backend->lastFallbackReason().find("height-grid description is inconsistent") != std::string::npos);
     for (std::size_t i = 0; i < cpu.size(); ++i) CHECK(cpu[i].buoyancyForce == dev[i].buoyancyForce);
+}
+
+TEST_CASE("OpenCL: a river is not taken for uniform flat water: it falls back to the CPU with a reason", "[opencl]") {
+    // The river is flat (isFlat) but its current varies with position: it does not describe itself as one of the
+    // device's kinds (flat water there has one uniform current), so its bodies stay on the CPU path, with the CPU's
+    // forces.
+    btRiverSettings rs;
+    rs.centreline = {{-10.0, -1.0}, {0.0, 0.0}, {10.0, 3.0}};
+    rs.width = 6.0;
+    rs.surfaceSpeed = 1.2;
+    const btRiverSurface river(rs);
+    BulletTestWorld w(&river);
+    Scene scene;
+    scene.populate(w);
+    btOpenClBuoyancyBackend* backend = installTestBackend(w.water(), btOpenClOptions::Precision::Auto);
+    if (!backend) return;
+    std::vector<btBuoyancyResult> cpu, dev;
+    std::uint64_t answered = 0;
+    evaluateBoth(w.world(), w.water(), *backend, kDt, cpu, dev, answered);
+    CHECK(answered == 0);
+    CHECK(backend->lastFallbackReason().find("not evaluated on the device") != std::string::npos);
+    for (std::size_t i = 0; i < cpu.size(); ++i) {
+        CHECK(cpu[i].buoyancyForce == dev[i].buoyancyForce);
+        CHECK(cpu[i].dragForce == dev[i].dragForce);
+    }
 }
 
 TEST_CASE("OpenCL double: trajectories stay close to the CPU's over 3 s of waves", "[opencl][slow]") {

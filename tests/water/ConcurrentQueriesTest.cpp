@@ -6,6 +6,7 @@
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
 #include <BulletBuoyancy/water/btGridWaterSurface.h>
 #include <BulletBuoyancy/water/btInteractiveWaterSurface.h>
+#include <BulletBuoyancy/water/btRiverSurface.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <catch2/catch.hpp>
@@ -67,6 +68,11 @@ std::vector<std::pair<std::string, std::unique_ptr<btWaterSurface>>> everySurfac
     interactive->addVolumeChange(1.0, 0.5, 1.5, 0.3);
     interactive->step(1.0 / 60);
     s.emplace_back("interactive", std::move(interactive));
+    btRiverSettings river;  // a bend through the callers' points: in the channel, near the corner and on the banks
+    river.centreline = {{-5.0, -3.0}, {4.0, 0.0}, {12.0, -5.0}};
+    river.width = 6.0;
+    river.surfaceSpeed = 1.2;
+    s.emplace_back("river", std::make_unique<btRiverSurface>(river));
     return s;
 }
 

@@ -21,8 +21,9 @@ class btWaterSurface;
 struct btWaterBodyInfo {
     /// Name used in messages, e.g. "pool" (empty: "water body <index>").
     std::string name;
-    /// The water surface inside the region; not owned, must outlive the world. Its current (btFlatWaterSurface's
-    /// currentX, currentZ) or wave velocities are the water's velocity in the region.
+    /// The water surface inside the region; not owned, must outlive the world. Its velocities (btFlatWaterSurface's
+    /// uniform current, btRiverSurface's current along its channel, waves' orbital velocities) are the water's velocity
+    /// in the region.
     const btWaterSurface* surface = nullptr;
     /// ρ_w, kg/m³ (fresh water 1000, sea water 1025), finite and > 0.
     double fluidDensity = 1000.0;
