@@ -2,6 +2,9 @@
 // damping, terminal speeds under a constant force and in a current, the apparent mass and inertia of a fully
 // submerged body, the added mass's Coriolis forces (momentum and energy kept), stability of a light body with an
 // added mass ten times its own at 240 Hz, and bad input.
+#include "scene/SceneErrors.h"
+#include "scene/SceneFile.h"
+#include "scene/SceneWorld.h"
 #include <BulletBuoyancy/BulletBuoyancy.h>
 
 #include <btBulletDynamicsCommon.h>
@@ -459,4 +462,49 @@ TEST_CASE("the datasheet example of the integration guide reaches its closed-for
     const double excess = (13.5 - kRho * 0.46 * 0.13 * 0.224) * 9.81;
     const double w = (-33.0 + std::sqrt(33.0 * 33.0 + 4 * 190.0 * excess)) / (2 * 190.0);
     CHECK(-s.bodyVelocity(dt)[1] == Approx(w).epsilon(2e-2));
+}
+
+TEST_CASE("scene bodies take a hydrodynamics block and bad values are errors naming the key", "[bullet][marine]") {
+    auto scene = [](const std::string& hydro, const std::string& buoyancy = "") {
+        return "{\"bodies\": [{\"shape\": {\"type\": \"box\", \"size\": [1, 0.5, 0.5]}, \"density\": 1000, "
+               "\"position\": [0, -5, 0]" + (buoyancy.empty() ? "" : ", \"buoyancy\": " + buoyancy) +
+               ", \"hydrodynamics\": " + hydro + "}]}";
+    };
+    const auto s = buoyancy::cli::parseScene(
+        scene(R"({"added_mass": [500, 0, 0, 0, 0, 0], "linear_damping": [100, 0, 0, 0, 0, 0],
+                  "quadratic_damping": [200, 0, 0, 0, 0, 0], "origin": [0.1, 0, 0]})"),
+        "s.json", ".");
+    REQUIRE(s.bodies.size() == 1);
+    const btMarineHydrodynamics& h = s.bodies[0].hydrodynamics;
+    CHECK(h.enabled);
+    CHECK(h.addedMass[0] == 500);
+    CHECK(h.linearDamping[0] == 100);
+    CHECK(h.quadraticDamping[0] == 200);
+    CHECK(double(h.referenceFrame.getOrigin().x()) == Approx(0.1));
+    CHECK_FALSE(s.bodies[0].buoyancy.addedMass);  // the matrix replaces the scalar added mass
+    // The world hands it to the body's action.
+    const auto world = buoyancy::cli::buildSceneWorld(s, 10.0);
+    REQUIRE(world->actions.size() == 1);
+    CHECK(world->actions[0]->getMarineHydrodynamics().enabled);
+    CHECK(world->actions[0]->getMarineHydrodynamics().addedMass[0] == 500);
+
+    auto expectError = [&](const std::string& text, const std::string& inMessage) {
+        try {
+            buoyancy::cli::parseScene(text, "s.json", ".");
+            FAIL("no error for " << text);
+        } catch (const buoyancy::cli::UsageError& e) {
+            INFO(e.what());
+            CHECK(std::string(e.what()).find(inMessage) != std::string::npos);
+        }
+    };
+    expectError(scene(R"({"added_mas": [1, 1, 1, 1, 1, 1]})"), "bodies[0].hydrodynamics");
+    expectError(scene(R"({"added_mas": [1, 1, 1, 1, 1, 1]})"), "added_mas");
+    expectError(scene(R"({"added_mass": [1, 2, 3]})"), "bodies[0].hydrodynamics.added_mass");
+    expectError(scene(R"({"quadratic_damping": [1, -2, 3, 0, 0, 0]})"), "bodies[0].hydrodynamics.quadratic_damping[1]");
+    expectError(scene(R"({"linear_damping": [-5, 0, 0, 0, 0, 0]})"), "linearDamping[0][0]");
+    std::string asymmetric = "[";
+    for (int k = 0; k < 36; ++k) asymmetric += (k ? "," : "") + std::string(k == 0 || k == 7 ? "100" : k == 1 ? "5" : "0");
+    asymmetric += "]";
+    expectError(scene("{\"added_mass\": " + asymmetric + "}"), "not symmetric");
+    expectError(scene(R"({"added_mass": [1, 1, 1, 1, 1, 1]})", R"({"added_mass": true})"), "replaces buoyancy.added_mass");
 }
