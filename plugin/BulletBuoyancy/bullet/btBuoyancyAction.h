@@ -132,7 +132,7 @@ public:
     /// settings still apply (set dragCoefficient, skinFriction, linearDamping to 0 when the datasheet's damping covers
     /// them; radiationDamping acts only near the surface). A velocity set on the body from outside between substeps
     /// counts as an impulse on the rigid mass and is shared with the added mass (before the first wet substep it is
-    /// taken as it is). Rigid bodies only (not btBuoyancyMultiBodyAction, not deformable samples' volume changes).
+    /// taken as it is). Rigid bodies only (btBuoyancyMultiBodyAction has no marine model).
     /// @throws std::invalid_argument naming the field (btMarineHydrodynamics::validate), or `enabled` when
     ///         settings.addedMass is on (nothing changed)
     void setMarineHydrodynamics(const btMarineHydrodynamics& hydrodynamics);
