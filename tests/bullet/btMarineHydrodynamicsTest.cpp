@@ -1,7 +1,8 @@
 // Marine hydrodynamics (Fossen's model, design.md 2.10) against closed forms: surge decay under linear + quadratic
 // damping, terminal speeds under a constant force and in a current, the apparent mass and inertia of a fully
 // submerged body, the added mass's Coriolis forces (momentum and energy kept), stability of a light body with an
-// added mass ten times its own at 240 Hz, and bad input.
+// added mass ten times its own at 240 Hz, matrices given in Fossen's axes or about another point, the integration
+// guide's datasheet example, the scene file's hydrodynamics block, and bad input.
 #include "scene/SceneErrors.h"
 #include "scene/SceneFile.h"
 #include "scene/SceneWorld.h"
@@ -15,7 +16,9 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -507,4 +510,26 @@ TEST_CASE("scene bodies take a hydrodynamics block and bad values are errors nam
     asymmetric += "]";
     expectError(scene("{\"added_mass\": " + asymmetric + "}"), "not symmetric");
     expectError(scene(R"({"added_mass": [1, 1, 1, 1, 1, 1]})", R"({"added_mass": true})"), "replaces buoyancy.added_mass");
+}
+
+TEST_CASE("marine hydrodynamics cost per body and substep (manual)", "[.timing]") {
+    // Prints the time of a substep of one submerged box without and with the marine model (diagonal matrices, linear
+    // damping, then linear and quadratic damping: the Newton iterations run every substep): no checks.
+    const double dt = 1.0 / 240.0;
+    for (const int marine : {0, 1, 2}) {
+        auto s = submergedBox();
+        if (marine)
+            s->action->setMarineHydrodynamics(diagonalModel({500, 600, 700, 5, 6, 7}, {100, 100, 100, 1, 1, 1},
+                                                            marine == 2 ? std::array<double, 6>{200, 200, 200, 2, 2, 2}
+                                                                        : std::array<double, 6>{}));
+        s->body->setLinearVelocity(btVector3(1, 0, 0.5f));
+        s->body->setAngularVelocity(btVector3(0, 0.5f, 0));
+        s->step(240, dt);
+        const auto t0 = std::chrono::steady_clock::now();
+        const int n = 24000;
+        s->step(n, dt);
+        const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / n;
+        std::printf("marine %s: %.2f us per substep (Bullet and the whole action)\n",
+                    marine == 0 ? "off" : marine == 1 ? "on, linear damping" : "on, linear and quadratic damping", us);
+    }
 }

@@ -3,6 +3,7 @@
 #include <BulletBuoyancy/bullet/btBulletConvert.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -164,51 +165,60 @@ Vector6d marineStep(const MarineStepInput& in) {
     const Vector6d base = mrb * in.bulletVelocity + pOld + maNow * u + in.impulse;
     const Matrix6d M = mrb + maNow;
 
-    // Damping in the reference frame, y = A (ν − u): implicit. First the quadratic term lagged (|y| at ν_B), then
-    // Newton on f(ν) = M ν + dt Aᵀ (D_l y + D_q |y| y) − rhs, whose Jacobian M + dt Aᵀ (D_l + 2 D_q |y|) A is positive
-    // definite (f is the gradient of a strictly convex function when D_l's symmetric part is ≥ 0).
+    // Damping in the reference frame, y = A (ν − u): implicit. Linear only: one factorisation for every pass below.
+    // With the quadratic term: Newton on f(ν) = M ν + dt Aᵀ (D_l y + D_q |y| y) − rhs, whose Jacobian
+    // M + dt Aᵀ (D_l + 2 D_q |y|) A is positive definite (f is the gradient of a strictly convex function when D_l's
+    // symmetric part is ≥ 0), started from the step with |y| lagged at ν_B or from the previous pass's solution.
     const Matrix6d A = in.reference * T.transpose();
     const bool quadratic = in.quadraticDamping.cwiseAbs().maxCoeff() > 0;
-    auto solve = [&](const Vector6d& rhs) {
-        const Vector6d lag = A * (in.bulletVelocity - u);
-        const Matrix6d D = in.linearDamping + Matrix6d(in.quadraticDamping.cwiseProduct(lag.cwiseAbs()).asDiagonal());
-        const Matrix6d K = M + dt * A.transpose() * D * A;
-        Vector6d nu = K.partialPivLu().solve(rhs + dt * A.transpose() * D * A * u);
-        if (!quadratic || !nu.allFinite()) return nu;
-        for (int it = 0; it < 8; ++it) {
+    const Matrix6d AtDlA = dt * A.transpose() * in.linearDamping * A;
+    Eigen::PartialPivLU<Matrix6d> linearLu;
+    if (!quadratic) linearLu.compute(M + AtDlA);
+    auto solve = [&](const Vector6d& rhs, const Vector6d* warm) -> Vector6d {
+        if (!quadratic) return linearLu.solve(rhs + AtDlA * u);
+        Vector6d nu;
+        if (warm) {
+            nu = *warm;
+        } else {
+            const Vector6d lag = A * (in.bulletVelocity - u);
+            const Matrix6d D = in.linearDamping + Matrix6d(in.quadraticDamping.cwiseProduct(lag.cwiseAbs()).asDiagonal());
+            const Matrix6d AtDA = dt * A.transpose() * D * A;
+            nu = (M + AtDA).partialPivLu().solve(rhs + AtDA * u);
+        }
+        for (int it = 0; it < 8 && nu.allFinite(); ++it) {
             const Vector6d y = A * (nu - u);
             const Vector6d f = M * nu +
                                dt * A.transpose() *
                                    (in.linearDamping * y + in.quadraticDamping.cwiseProduct(y.cwiseAbs().cwiseProduct(y))) -
                                rhs;
             const Matrix6d Jf =
-                M + dt * A.transpose() *
-                        (in.linearDamping + Matrix6d((2.0 * in.quadraticDamping.cwiseProduct(y.cwiseAbs())).asDiagonal())) *
-                        A;
+                M + AtDlA + dt * A.transpose() * Matrix6d((2.0 * in.quadraticDamping.cwiseProduct(y.cwiseAbs())).asDiagonal()) * A;
             const Vector6d step = Jf.partialPivLu().solve(f);
             if (!step.allFinite()) break;
             nu -= step;
-            if (step.norm() <= 1e-13 * (nu.norm() + 1e-30)) break;
+            if (step.norm() <= 1e-10 * (nu.norm() + 1e-30)) break;  // far below the step's O(dt) error
         }
         return nu;
     };
-    // The Munk moment −v_r × p at the end of the step (design.md 2.10): first with the start's, then with the end
-    // velocity of the previous pass. Exact after one pass when the linear rows do not depend on ω (no coupling blocks);
-    // at most three otherwise.
-    auto withMunk = [&](const Eigen::Vector3d& munk) {
+    // The Munk moment −v_r × p at the end of the step (design.md 2.10), by fixed point: a first solve with the start's
+    // v and p, then again with the end's until they agree. The linear rows do not depend on ω without coupling blocks
+    // (and without damping at an offset point): then the second solve is the answer; at most three more otherwise.
+    auto withMunk = [&](const Eigen::Vector3d& munk, const Vector6d* warm) {
         Vector6d rhs = base;
         rhs.tail<3>() += dt * munk;
-        return solve(rhs);
+        return solve(rhs, warm);
     };
-    const Eigen::Vector3d munkStart =
-        -(in.startVelocity.head<3>() - in.previousCurrent).cross(Eigen::Vector3d(pOld.head<3>()));
-    Vector6d nu = withMunk(munkStart);
-    for (int pass = 0; pass < 3 && nu.allFinite(); ++pass) {
-        const Vector6d pEnd = maNow * (nu - u);
-        const Vector6d next = withMunk(-(nu.head<3>() - in.current).cross(Eigen::Vector3d(pEnd.head<3>())));
-        const double change = (next - nu).norm();
-        nu = next;
-        if (!(change > 1e-12 * nu.norm())) break;
+    auto munkAt = [&](const Vector6d& nu) -> Eigen::Vector3d {
+        const Vector6d p = maNow * (nu - u);
+        return -(nu.head<3>() - in.current).cross(Eigen::Vector3d(p.head<3>()));
+    };
+    Eigen::Vector3d munk = -(in.startVelocity.head<3>() - in.previousCurrent).cross(Eigen::Vector3d(pOld.head<3>()));
+    Vector6d nu = withMunk(munk, nullptr);
+    for (int pass = 0; pass < 4 && nu.allFinite(); ++pass) {
+        const Eigen::Vector3d next = munkAt(nu);
+        if (!((next - munk).norm() > 1e-12 * (next.norm() + munk.norm()))) break;  // consistent (or not finite)
+        munk = next;
+        nu = withMunk(munk, &nu);
     }
     return nu;
 }
