@@ -192,6 +192,28 @@ TEST_CASE("marine damping acts on the velocity relative to the water's current",
     CHECK(std::abs(still->bodyVelocity(dt)[0]) < 1e-4);
 }
 
+TEST_CASE("at the surface the marine coefficients are scaled by the submerged fraction", "[bullet][marine]") {
+    // A box of half the water's density floats at half its height: submerged fraction φ = ½. Surge with linear damping
+    // only, from u0: (m + φ X) du/dt = −φ d1 u, u = u0 e^(−φ d1 t / (m + φ X)); error bound (dt/2)|u'(0)| as above.
+    // Without the scaling the full coefficients give another decay rate, which the same bound tells apart.
+    const double dt = 1.0 / 240.0, u0 = 1.0;
+    for (const bool scaled : {true, false}) {
+        MarineScene s(btVector3(0.5f, 0.25f, 0.25f), 500.0, btVector3(0, 0, 0));
+        const double m = s.mass, X = 2.0 * m, d1 = 150.0;
+        btMarineHydrodynamics h = diagonalModel({X, X, X, 0, 0, 0}, {d1, 0, 0, 0, 0, 0}, {});
+        h.scaleBySubmergedFraction = scaled;
+        s.action->setMarineHydrodynamics(h);
+        s.body->setLinearVelocity(btVector3(btScalar(u0), 0, 0));
+        const double phi = scaled ? 0.5 : 1.0;
+        const double M = m + phi * X, bound = 0.5 * dt * phi * d1 * u0 / M + 1e-4;
+        s.step(240, dt);
+        CHECK(s.action->getSubmergedFraction() == Approx(0.5).margin(2e-3));  // a start-up bob of 0.1 mm
+        const double expected = u0 * std::exp(-phi * d1 * 1.0 / M);
+        INFO("scaled " << scaled << "  u " << s.bodyVelocity(dt)[0] << "  closed form " << expected);
+        CHECK(std::abs(s.bodyVelocity(dt)[0] - expected) <= bound);
+    }
+}
+
 TEST_CASE("a fully submerged body accelerates with its apparent mass and inertia", "[bullet][marine]") {
     // No damping: a force F along a principal direction gives a = F / (m + M_A,ii) exactly (the implicit step is exact
     // for a constant force), a torque τ about a principal axis α = τ / (I + M_A,jj). One second, then compared to
