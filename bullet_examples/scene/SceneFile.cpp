@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include <functional>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 namespace buoyancy::cli {
 
@@ -116,12 +118,57 @@ btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::strin
     return b;
 }
 
+/// Bound of the hydrodynamic coefficients: a large ship's added mass is ~1e8 kg, its inertia's ~1e12 kg·m².
+constexpr double kHydroBig = 1e15;
+
+/// A 6×6 matrix as 6 numbers (its diagonal) or 36 (row-major), each finite and within ±kHydroBig.
+std::array<double, 36> readMatrix6(const Reader& r, const json& j, const std::string& key) {
+    if (!j.is_array() || (j.size() != 6 && j.size() != 36))
+        r.fail(key, "expected an array of 6 numbers (the diagonal) or 36 (row-major 6x6)");
+    std::array<double, 36> m{};
+    for (std::size_t i = 0; i < j.size(); ++i) {
+        const double x = r.number(j[i], key + "[" + std::to_string(i) + "]", -kHydroBig, kHydroBig);
+        if (j.size() == 6) m[7 * i] = x;
+        else m[i] = x;
+    }
+    return m;
+}
+
+btMarineHydrodynamics readHydrodynamics(const Reader& r, const json& j, const std::string& key) {
+    r.requireObject(j, key);
+    r.allowKeys(j, key, {"added_mass", "linear_damping", "quadratic_damping", "origin", "use_water_velocity",
+                         "scale_by_submerged_fraction"});
+    btMarineHydrodynamics h;
+    h.enabled = true;
+    if (j.contains("added_mass")) h.addedMass = readMatrix6(r, j["added_mass"], key + ".added_mass");
+    if (j.contains("linear_damping")) h.linearDamping = readMatrix6(r, j["linear_damping"], key + ".linear_damping");
+    if (j.contains("quadratic_damping")) {
+        const json& q = j["quadratic_damping"];
+        if (!q.is_array() || q.size() != 6) r.fail(key + ".quadratic_damping", "expected an array of 6 numbers");
+        for (std::size_t i = 0; i < 6; ++i)
+            h.quadraticDamping[i] = r.number(q[i], key + ".quadratic_damping[" + std::to_string(i) + "]", 0.0, kHydroBig);
+    }
+    if (j.contains("origin")) {
+        const Eigen::Vector3d o = r.vec3(j["origin"], key + ".origin", -kBig, kBig);
+        h.referenceFrame.setOrigin(btVector3(btScalar(o.x()), btScalar(o.y()), btScalar(o.z())));
+    }
+    if (j.contains("use_water_velocity")) h.useWaterVelocity = r.boolean(j["use_water_velocity"], key + ".use_water_velocity");
+    if (j.contains("scale_by_submerged_fraction"))
+        h.scaleBySubmergedFraction = r.boolean(j["scale_by_submerged_fraction"], key + ".scale_by_submerged_fraction");
+    try {
+        h.validate();
+    } catch (const std::invalid_argument& e) {
+        r.fail(key, e.what());
+    }
+    return h;
+}
+
 SceneBody readBody(const Reader& r, const json& j, const std::string& key, std::size_t index,
                    const std::string& directory) {
     r.requireObject(j, key);
     r.allowKeys(j, key, {"name", "shape", "density", "mass", "mass_model", "thickness", "position", "rotation",
                          "linear_velocity", "angular_velocity", "buoyancy", "ballast", "fixed", "collision",
-                         "water_graph", "permeability", "density_map"});
+                         "water_graph", "permeability", "density_map", "hydrodynamics"});
     SceneBody b;
     b.name = j.contains("name") ? r.string(j["name"], key + ".name") : "body" + std::to_string(index);
     if (b.name.empty()) r.fail(key + ".name", "must not be empty");
@@ -166,6 +213,13 @@ SceneBody readBody(const Reader& r, const json& j, const std::string& key, std::
     if (j.contains("angular_velocity"))
         b.angularVelocity = r.vec3(j["angular_velocity"], key + ".angular_velocity", -kBig, kBig);
     if (j.contains("buoyancy")) b.buoyancy = readBuoyancy(r, j["buoyancy"], key + ".buoyancy");
+    if (j.contains("hydrodynamics")) {
+        b.hydrodynamics = readHydrodynamics(r, j["hydrodynamics"], key + ".hydrodynamics");
+        // Its added-mass matrix replaces the scalar added mass: off unless asked for, and then a contradiction.
+        if (j.contains("buoyancy") && j["buoyancy"].contains("added_mass") && b.buoyancy.addedMass)
+            r.fail(key + ".hydrodynamics", "replaces buoyancy.added_mass: remove that key or set it to false");
+        b.buoyancy.addedMass = false;
+    }
     if (j.contains("ballast")) {
         const json& bl = j["ballast"];
         if (!bl.is_array()) r.fail(key + ".ballast", "expected an array of {\"position\", \"mass\"}");

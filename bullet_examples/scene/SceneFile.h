@@ -6,6 +6,7 @@
 
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/bullet/btMarineHydrodynamics.h>
 #include <BulletBuoyancy/bullet/btWaterFrame.h>
 #include <BulletBuoyancy/water/btFftOceanSurface.h>
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
@@ -48,6 +49,9 @@ struct SceneBody {
     Eigen::Vector3d linearVelocity = Eigen::Vector3d::Zero();  ///< COM velocity, world, m/s
     Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero(); ///< world, rad/s
     btBuoyancySettings buoyancy;      ///< the "buoyancy" block (library defaults when absent)
+    /// The "hydrodynamics" block: Fossen's added mass and damping (enabled when the block is present; its presence
+    /// turns the buoyancy block's scalar added mass off)
+    btMarineHydrodynamics hydrodynamics;
     SceneFlooding flooding;           ///< "water_graph" and "permeability" (SceneGraph.h)
 };
 

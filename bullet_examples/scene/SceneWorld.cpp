@@ -166,6 +166,7 @@ std::unique_ptr<SceneWorld> buildSceneWorld(const Scene& scene, double importTim
             rb->setAngularVelocity(btVector3(btScalar(b.angularVelocity.x()), btScalar(b.angularVelocity.y()),
                                              btScalar(b.angularVelocity.z())));
             w.actions.push_back(std::make_unique<btBuoyancyAction>(*w.bodies.back(), w.buoyancy.get(), b.buoyancy));
+            if (b.hydrodynamics.enabled) w.actions.back()->setMarineHydrodynamics(b.hydrodynamics);
             w.world.addAction(w.actions.back().get());
             if (b.flooding.enabled) {  // after the body's buoyancy action (the water clock is current)
                 try {

@@ -22,6 +22,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/bullet/btMarineHydrodynamics.h>
 #include <BulletBuoyancy/bullet/btCollisionShapeMesh.h>
 #include <BulletBuoyancy/bullet/btConvexHullMesh.h>
 #include <BulletBuoyancy/bullet/btFloodingAction.h>

@@ -3,7 +3,7 @@
 // direction across a bend: the bisector at the corner, continuous along the way), flat heights, the settings refused
 // with their names; and in a Bullet world a crate released at rest drifting up to the current (the drag law's
 // terminal state: the relative velocity goes to 0) while one beside the channel stays put. The thread-safety rule is
-// checked with every other surface in test_concurrent_queries.cpp.
+// checked with every other surface in ConcurrentQueriesTest.cpp.
 #include "oracles/BulletTestWorld.h"
 
 #include <BulletBuoyancy/mesh/PrimitiveMeshes.h>

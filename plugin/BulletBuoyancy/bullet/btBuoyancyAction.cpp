@@ -100,12 +100,110 @@ btBuoyancyAction::~btBuoyancyAction() { m_world->unregisterAction(this); }
 
 void btBuoyancyAction::setSettings(const btBuoyancySettings& settings) {
     settings.validate();
+    if (m_marine.enabled && settings.addedMass)
+        throw std::invalid_argument("addedMass: must be false while the marine hydrodynamics are enabled (their "
+                                    "added-mass matrix replaces the scalar added mass)");
     const bool recluster = settings.dragClusters != m_settings.dragClusters ||
                            settings.waterVelocityProbes != m_settings.waterVelocityProbes;
     m_settings = settings;
     m_history.clear();  // the records may have been made with other drag or method settings
     m_adaptedInterval = 0;
     if (recluster) selectDragClusters();
+}
+
+void btBuoyancyAction::setMarineHydrodynamics(const btMarineHydrodynamics& hydrodynamics) {
+    hydrodynamics.validate();
+    if (hydrodynamics.enabled && m_settings.addedMass)
+        throw std::invalid_argument("btMarineHydrodynamics.enabled: the settings' scalar added mass is on "
+                                    "(btBuoyancySettings::addedMass); set it to false first: the added-mass matrix "
+                                    "replaces it");
+    m_marine = hydrodynamics;
+    m_marineSubstep = 0;  // start afresh from the body's velocity
+}
+
+bool btBuoyancyAction::marineImpulse(const buoyancy::HydrostaticsResult& h, double dt, btVector3& J, btVector3& L) {
+    // design.md 2.10: Fossen's model solved with the body's mass at the end of the substep, world frame.
+    const btWaterFrame& frame = m_world->getWaterFrame();
+    const double m = 1.0 / double(m_body->getInvMass());
+    const Eigen::Matrix3d R = toEigen(m_body->getWorldTransform()).linear();
+    const btVector3 invI = m_body->getInvInertiaDiagLocal();
+    Eigen::Vector3d inertia;
+    for (int k = 0; k < 3; ++k)  // a locked axis (inverse inertia 0) as a very large inertia
+        inertia[k] = invI[k] > 0 ? 1.0 / double(invI[k]) : 1e12 * std::max(m, 1.0);
+    buoyancy::MarineStepInput in;
+    in.dt = dt;
+    in.mass = m;
+    in.inertia = R * inertia.asDiagonal() * R.transpose();
+    in.rotation = R;
+    const Eigen::Vector3d gdt = toEigen(m_body->getGravity()) * dt;  // the kick Bullet applies at the next substep
+    in.bulletVelocity << toEigen(m_body->getLinearVelocity()), toEigen(m_body->getAngularVelocity());
+    // Every coefficient scaled by the submerged fraction (btMarineHydrodynamics::scaleBySubmergedFraction).
+    double phi = 1.0;
+    if (m_marine.scaleBySubmergedFraction && m_settings.buoyancyEnabled) {
+        const double volume = m_deformable ? m_deformable->getVolume() : m_shape->getVolume();
+        const double f = volume > 0 ? h.submerged_volume / volume : 0.0;
+        phi = std::isfinite(f) ? std::min(std::max(f, 0.0), 1.0) : 0.0;
+    }
+    // The water's velocity at the centre of mass (currents, orbital velocity).
+    Eigen::Vector3d u = Eigen::Vector3d::Zero();
+    if (m_marine.useWaterVelocity && m_activeWater) {
+        const Eigen::Vector3d c = frame.toWaterPoint(toEigen(m_body->getCenterOfMassPosition()));
+        double ux = 0, uy = 0, uz = 0;
+        m_activeWater->velocities(&c.x(), &c.y(), &c.z(), 1, m_world->getTime(), &ux, &uy, &uz);
+        u = frame.toWorldVector(Eigen::Vector3d(ux, uy, uz));
+        if (!u.allFinite()) u.setZero();
+    }
+    in.current = u;
+    // The step's start: the end of the previous substep when the model ran then; else the velocity Bullet integrated
+    // with, less the kicks of the forces accumulated on the body (below).
+    const std::uint64_t substep = m_world->getSubstep();
+    const bool history = m_marineSubstep != 0 && m_marineSubstep + 1 == substep;
+    if (history) {
+        in.startVelocity = m_marineVelocity;
+        in.previousRotation = m_marineRotation;
+        in.previousCurrent = m_marineCurrent;
+    } else {
+        // Bullet's kicks of this substep from the forces accumulated on the body (contacts are not known): the user's
+        // forces and torques, and the weight unless the action had already counted on it (a body primed before).
+        Eigen::Vector3d force = toEigen(m_body->getTotalForce());
+        if (!m_needsPrime) force -= m * toEigen(m_body->getGravity());
+        in.startVelocity = in.bulletVelocity;
+        in.startVelocity.head<3>() -= force * (dt / m);
+        in.startVelocity.tail<3>() -= toEigen(m_body->getInvInertiaTensorWorld() * m_body->getTotalTorque()) * dt;
+        in.previousRotation = R;
+        in.previousCurrent = u;
+    }
+    // The matrices about the centre of mass in the body's axes; damping stays in the reference frame.
+    const Eigen::Isometry3d ref = toEigen(getMeshInComFrame() * m_marine.referenceFrame);
+    in.reference = buoyancy::marineFrameJacobian(ref.linear(), ref.translation());
+    buoyancy::Matrix6d ma, dl;
+    for (int i = 0; i < 6; ++i) {
+        for (int j = 0; j < 6; ++j) {
+            ma(i, j) = m_marine.addedMass[std::size_t(6 * i + j)];
+            dl(i, j) = m_marine.linearDamping[std::size_t(6 * i + j)];
+        }
+        in.quadraticDamping[i] = phi * m_marine.quadraticDamping[std::size_t(i)];
+    }
+    in.addedMass = phi * (in.reference.transpose() * ma * in.reference);
+    in.linearDamping = phi * dl;
+    // The action's own impulses for the next substep plus the weight Bullet will add (at the total mass here).
+    in.impulse << toEigen(J) + m * gdt, toEigen(L);
+    const buoyancy::Vector6d nu = buoyancy::marineStep(in);
+    if (!nu.allFinite()) return false;
+    // Leave the body at ν less the gravity kick Bullet adds before it integrates the next substep.
+    const Eigen::Vector3d dv = nu.head<3>() - gdt - in.bulletVelocity.head<3>();
+    const Eigen::Vector3d dw = nu.tail<3>() - in.bulletVelocity.tail<3>();
+    J = toBullet(Eigen::Vector3d(m * dv));
+    L = toBullet(Eigen::Vector3d(in.inertia * dw));
+    // The next substep starts from what the body gets: Bullet scales the changes by its linear and angular factors
+    // (a locked axis keeps its velocity).
+    const Eigen::Vector3d fl = toEigen(m_body->getLinearFactor()), fa = toEigen(m_body->getAngularFactor());
+    m_marineVelocity << in.bulletVelocity.head<3>() + fl.cwiseProduct(dv) + gdt,
+        in.bulletVelocity.tail<3>() + fa.cwiseProduct(dw);
+    m_marineRotation = R;
+    m_marineCurrent = u;
+    m_marineSubstep = substep;
+    return true;
 }
 
 void btBuoyancyAction::selectDragClusters() {
@@ -822,12 +920,18 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     }
     // Never write NaN/Inf into a body (design.md 3): checked after rounding to btScalar (a finite double
     // can overflow a float) and on the velocities the impulses would give.
-    const btVector3 J = toBullet(frame.toWorldVector(linearImpulse)), L = toBullet(frame.toWorldVector(angularImpulse));
+    btVector3 J = toBullet(frame.toWorldVector(linearImpulse)), L = toBullet(frame.toWorldVector(angularImpulse));
+    if (m_marine.enabled && !marineImpulse(h, dt, J, L)) {  // Fossen's model (design.md 2.10)
+        ++m_rejected;
+        m_history.clear();
+        return;
+    }
     const btVector3 v1 = m_body->getLinearVelocity() + J * m_body->getInvMass() * m_body->getLinearFactor();
     const btVector3 w1 = m_body->getAngularVelocity() + m_body->getInvInertiaTensorWorld() * L * m_body->getAngularFactor();
     if (!linearImpulse.allFinite() || !angularImpulse.allFinite() || !toEigen(v1).allFinite() ||
-        !toEigen(w1).allFinite()) {
+        !toEigen(w1).allFinite() || !toEigen(J).allFinite() || !toEigen(L).allFinite()) {
         ++m_rejected;
+        m_marineSubstep = 0;
         m_history.clear();
         return;
     }

@@ -14,6 +14,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btHydrostaticsHistory.h>
+#include <BulletBuoyancy/bullet/btMarineHydrodynamics.h>
 #include <BulletBuoyancy/integrals/DragClusters.h>
 #include <BulletBuoyancy/integrals/Hydrostatics.h>
 #include <BulletBuoyancy/integrals/WaterPatch.h>
@@ -121,8 +122,22 @@ public:
     const std::shared_ptr<const btBuoyancyShape>& getShape() const { return m_shape; }
     /// Settings in use.
     const btBuoyancySettings& getSettings() const { return m_settings; }
-    /// Replace the settings. @throws std::invalid_argument (settings unchanged)
+    /// Replace the settings. @throws std::invalid_argument (settings unchanged), also when settings.addedMass is on while
+    /// the marine hydrodynamics are enabled (setMarineHydrodynamics)
     void setSettings(const btBuoyancySettings& settings);
+    /// Marine-robotics hydrodynamics (Fossen's model, design.md 2.10): a 6×6 added mass, linear and quadratic damping
+    /// in a body-fixed frame and the added mass's Coriolis forces, solved with the body's own mass at the end of each
+    /// substep (stable for any added mass). Off by default. They replace the scalar added mass of the settings, so
+    /// btBuoyancySettings::addedMass must be false while they are enabled; the per-sample drag and damping of the
+    /// settings still apply (set dragCoefficient, skinFriction, linearDamping to 0 when the datasheet's damping covers
+    /// them; radiationDamping acts only near the surface). A velocity set on the body from outside between substeps
+    /// counts as an impulse on the rigid mass and is shared with the added mass (before the first wet substep it is
+    /// taken as it is). Rigid bodies only (btBuoyancyMultiBodyAction has no marine model).
+    /// @throws std::invalid_argument naming the field (btMarineHydrodynamics::validate), or `enabled` when
+    ///         settings.addedMass is on (nothing changed)
+    void setMarineHydrodynamics(const btMarineHydrodynamics& hydrodynamics);
+    /// The marine hydrodynamics in use (enabled false: none).
+    const btMarineHydrodynamics& getMarineHydrodynamics() const { return m_marine; }
     /// The mesh frame in the body's COM frame (for bodies not made by btBuoyantBody).
     void setMeshInComFrame(const btTransform& meshInCom) { m_meshInCom = meshInCom; }
     /// The mesh frame in the body's COM frame currently used.
@@ -321,5 +336,16 @@ private:
     double m_baseAngularSleep = 0;  ///< the body's angular sleeping threshold when the action was made, rad/s
     Eigen::Vector3d m_lastCom = Eigen::Vector3d::Zero(); ///< COM after the previous wet substep, m
     bool m_hasLastCom = false;      ///< m_lastCom is valid (the previous substep was wet and applied)
+    ///@}
+    /// @name Marine hydrodynamics (design.md 2.10)
+    ///@{
+    btMarineHydrodynamics m_marine;
+    /// Turn this substep's impulses (J, L: world, N·s, N·m·s, the action's buoyancy and drag for the rigid mass) into
+    /// the ones that give the marine model's end-of-step velocity; false when it is not finite (nothing applied).
+    bool marineImpulse(const buoyancy::HydrostaticsResult& h, double dt, btVector3& J, btVector3& L);
+    std::uint64_t m_marineSubstep = 0;  ///< the substep whose end state is below (0: none)
+    buoyancy::Vector6d m_marineVelocity = buoyancy::Vector6d::Zero(); ///< end-of-step velocity [v; ω], world
+    Eigen::Matrix3d m_marineRotation = Eigen::Matrix3d::Identity();   ///< body → world at that substep's end
+    Eigen::Vector3d m_marineCurrent = Eigen::Vector3d::Zero();        ///< the water velocity used then, m/s, world
     ///@}
 };
