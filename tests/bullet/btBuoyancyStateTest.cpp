@@ -16,6 +16,7 @@
 #include <BulletBuoyancy/graph/WaterIngress.h>
 #include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <btBulletDynamicsCommon.h>
 #include <catch2/catch.hpp>
@@ -137,7 +138,8 @@ struct Scene {
     std::vector<btActionInterface*> added;
     Recorder recorder;
 
-    Scene() : water(&world, &gerstner, 1025.0) {
+    /// @param surface  the water (nullptr: the Gerstner sea)
+    explicit Scene(const btWaterSurface* surface = nullptr) : water(&world, surface ? surface : &gerstner, 1025.0) {
         world.setGravity(btVector3(0, btScalar(-9.81), 0));
         water.setThreads(1);
         water.addEventListener(&recorder);
@@ -196,7 +198,7 @@ struct Scene {
     }
 
     /// `substeps` fixed substeps (one per stepSimulation call: Bullet keeps no interpolation remainder), recording every
-    /// body's transform and velocities after each, as bytes.
+    /// body's transform, velocities and activation state after each, as bytes.
     std::vector<unsigned char> run(int substeps) {
         std::vector<btScalar> v;
         for (int s = 0; s < substeps; ++s) {
@@ -211,6 +213,7 @@ struct Scene {
                     v.push_back(rb->getLinearVelocity()[k]);
                     v.push_back(rb->getAngularVelocity()[k]);
                 }
+                v.push_back(btScalar(rb->getActivationState()));
             }
         }
         std::vector<unsigned char> bytes(v.size() * sizeof(btScalar));
@@ -286,6 +289,29 @@ TEST_CASE("save and restore: run on after a restore bit-identically in waves wit
     REQUIRE(first.size() == again.size());
     CHECK(std::memcmp(first.data(), again.data(), first.size()) == 0);
     CHECK(scene.water.getSubstep() == 300);
+}
+
+TEST_CASE("save and restore: bodies coming to rest in calm water fall asleep at the same substeps", "[bullet][state]") {
+    // In calm water the action decides when a floating body is at rest (its energy above the hydrostatic equilibrium,
+    // from the centre of mass's motion since the last substep) and opens Bullet's sleeping thresholds: the sleep state
+    // is part of what is restored, and the bodies fall asleep during the run after the save.
+    const btFlatWaterSurface flat(0.0);
+    Scene scene(&flat);
+    scene.run(360);
+    const Snapshot snapshot = scene.save();
+    int awakeAtSave = 0;
+    for (const auto& b : scene.bodies) awakeAtSave += b->getRigidBody()->isActive() ? 1 : 0;
+    const std::vector<unsigned char> first = scene.run(1200);
+    int asleep = 0;
+    for (const auto& b : scene.bodies) asleep += b->getRigidBody()->getActivationState() == ISLAND_SLEEPING ? 1 : 0;
+    INFO("awake at the save: " << awakeAtSave << ", asleep at the end: " << asleep);
+    CHECK(awakeAtSave >= 6);
+    CHECK(asleep >= 1);
+    scene.restore(snapshot);
+    const std::vector<unsigned char> again = scene.run(1200);
+    INFO(firstDifference(first, again));
+    REQUIRE(first.size() == again.size());
+    CHECK(std::memcmp(first.data(), again.data(), first.size()) == 0);
 }
 
 TEST_CASE("save and restore: a second scene built the same way continues the first one bit-identically",
