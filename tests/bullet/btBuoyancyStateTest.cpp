@@ -453,3 +453,39 @@ TEST_CASE("save and restore: bad blobs throw a clear error and change nothing", 
     scene.water.restoreState(world);
     CHECK(scene.water.saveState() == world);
 }
+
+TEST_CASE("save and restore: a restore from an event callback is refused", "[bullet][state]") {
+    Scene scene;
+    scene.run(2);
+    const std::vector<unsigned char> world = scene.water.saveState();
+    const std::vector<unsigned char> action = scene.actions[0]->saveState();
+    struct Restorer : btBuoyancyEventListener {
+        btBuoyancyWorld* water = nullptr;
+        btBuoyancyAction* action = nullptr;
+        const std::vector<unsigned char>* worldBlob = nullptr;
+        const std::vector<unsigned char>* actionBlob = nullptr;
+        std::vector<std::string> messages;
+        void onEnterWater(const btBuoyancyEvent&) override {
+            try {
+                water->restoreState(*worldBlob);
+            } catch (const std::logic_error& e) {
+                messages.push_back(e.what());
+            }
+            try {
+                action->restoreState(*actionBlob);
+            } catch (const std::logic_error& e) {
+                messages.push_back(e.what());
+            }
+        }
+    } restorer;
+    restorer.water = &scene.water;
+    restorer.action = scene.actions[0].get();
+    restorer.worldBlob = &world;
+    restorer.actionBlob = &action;
+    scene.water.addEventListener(&restorer);
+    scene.run(120);
+    scene.water.removeEventListener(&restorer);
+    REQUIRE(restorer.messages.size() >= 2);
+    CHECK_THAT(restorer.messages[0], Contains("btBuoyancyWorld::restoreState") && Contains("between stepSimulation calls"));
+    CHECK_THAT(restorer.messages[1], Contains("btBuoyancyAction::restoreState") && Contains("event callback"));
+}

@@ -1211,6 +1211,9 @@ std::vector<unsigned char> btBuoyancyAction::saveState() const {
 }
 
 void btBuoyancyAction::restoreState(const unsigned char* data, std::size_t size) {
+    if (m_world->isDispatchingEvents())
+        throw std::logic_error("btBuoyancyAction::restoreState: called from an event callback; restore between "
+                               "stepSimulation calls");
     btBuoyancyStateReader in(data, size, btBuoyancyStateKind::Action, "btBuoyancyAction::restoreState");
     in.expectCount(in.u64("sample count"), m_shape->getSamples().size(), "the shape's sample count");
     in.expectCount(in.u64("mesh vertex count"), m_shape->getMesh().vertices.size(), "the mesh's vertex count");

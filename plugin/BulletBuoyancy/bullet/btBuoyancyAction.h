@@ -169,8 +169,9 @@ public:
     ///         format version, a blob of the other precision (float/double btScalar), another kind of blob (a world's,
     ///         a flooding action's ...), truncated, corrupted (checksum), a blob of a body with another mesh, sample, drag
     ///         cluster or velocity probe count, or a water-query warm start naming a water body the world does not have
+    /// @throws std::logic_error when called from an event callback (during a step)
     void restoreState(const unsigned char* data, std::size_t size);
-    /// restoreState of a whole vector. @throws std::invalid_argument (see above)
+    /// restoreState of a whole vector. @throws std::invalid_argument, std::logic_error (see above)
     void restoreState(const std::vector<unsigned char>& blob) { restoreState(blob.data(), blob.size()); }
     ///@}
 
