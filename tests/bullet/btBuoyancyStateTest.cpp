@@ -1,21 +1,25 @@
-// Save and restore (btBuoyancyState.h; btBuoyancyWorld, btBuoyancyAction, btFloodingAction, btTimeVaryingMassAction and
-// btBuoyantBody saveState / restoreState): a scene in Gerstner waves with the temporal level of detail on (the default),
-// water graphs filling through holes and time-varying density maps is run, saved, run on, restored and run again: the
-// trajectory after the restore is the first one to the bit (every body's transform and velocities at every substep),
-// in the same scene and in a second scene built the same way; the water events after the restore are the first ones;
-// leaving out a piece of the state (the world's clock, the actions') gives another trajectory, so the comparison can
-// fail; bad blobs (truncated at every length, a wrong magic, version, precision or kind, a corrupted byte, another
-// body's blob) throw std::invalid_argument naming the problem and change nothing.
+// Save and restore (btBuoyancyState.h; btBuoyancyWorld, btBuoyancyAction, btFloodingAction, btTimeVaryingMassAction,
+// btBuoyantBody and btInteractiveWaterCoupler saveState / restoreState): a scene in Gerstner waves with the temporal
+// level of detail on (the default), water graphs filling through holes and time-varying density maps is run, saved,
+// run on, restored and run again: the trajectory after the restore is the first one to the bit (every body's
+// transform, velocities and activation state at every substep), in the same scene and in a second scene built the
+// same way, in calm water where bodies fall asleep, and in interactive water (its grid and the footprints fed to it
+// restored); the water events after the restore are the first ones; leaving out a piece of the state (the world's
+// clock, the actions', the interactive water's) gives another trajectory, so the comparison can fail; bad blobs
+// (truncated at every length, a wrong magic, version, precision or kind, a corrupted byte, another body's blob) throw
+// std::invalid_argument naming the problem and change nothing; a restore from an event callback is refused.
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyEvents.h>
 #include <BulletBuoyancy/bullet/btBuoyancyState.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 #include <BulletBuoyancy/bullet/btFloodingAction.h>
+#include <BulletBuoyancy/bullet/btInteractiveWaterCoupler.h>
 #include <BulletBuoyancy/bullet/btTimeVaryingMassAction.h>
 #include <BulletBuoyancy/graph/WaterIngress.h>
 #include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
+#include <BulletBuoyancy/water/btInteractiveWaterSurface.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <btBulletDynamicsCommon.h>
@@ -114,11 +118,12 @@ struct Recorder : btBuoyancyEventListener {
 struct Snapshot {
     std::vector<unsigned char> world;
     std::vector<std::vector<unsigned char>> actions, floods, masses, bodies;
+    std::vector<unsigned char> coupler;  ///< the interactive water's, when the scene has one
     std::vector<RigidBodyState> rigid;
 };
 
 /// What a restore leaves out (to show that the comparison can fail).
-enum class Omit { Nothing, WorldClock, Actions };
+enum class Omit { Nothing, WorldClock, Actions, InteractiveWater };
 
 /// Boxes and balls in Gerstner waves with the library's default settings (temporal level of detail, drag clusters,
 /// water patch), some dropped from above the water (events), some with a water graph filling through a hole in the
@@ -135,11 +140,14 @@ struct Scene {
     std::vector<std::unique_ptr<btBuoyancyAction>> actions;
     std::vector<std::unique_ptr<btFloodingAction>> floods;
     std::vector<std::unique_ptr<btTimeVaryingMassAction>> masses;
+    std::unique_ptr<btInteractiveWaterCoupler> coupler;
     std::vector<btActionInterface*> added;
     Recorder recorder;
 
-    /// @param surface  the water (nullptr: the Gerstner sea)
-    explicit Scene(const btWaterSurface* surface = nullptr) : water(&world, surface ? surface : &gerstner, 1025.0) {
+    /// @param surface      the water (nullptr: the Gerstner sea)
+    /// @param interactive  the surface is this interactive grid: its coupler is added after every other action
+    explicit Scene(const btWaterSurface* surface = nullptr, btInteractiveWaterSurface* interactive = nullptr)
+        : water(&world, interactive ? interactive : surface ? surface : &gerstner, 1025.0) {
         world.setGravity(btVector3(0, btScalar(-9.81), 0));
         water.setThreads(1);
         water.addEventListener(&recorder);
@@ -184,6 +192,10 @@ struct Scene {
                 add(floods.back().get());
             }
         }
+        if (interactive) {
+            coupler = std::make_unique<btInteractiveWaterCoupler>(interactive, &water);
+            add(coupler.get());
+        }
     }
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
@@ -227,6 +239,7 @@ struct Scene {
         for (const auto& a : actions) s.actions.push_back(a->saveState());
         for (const auto& f : floods) s.floods.push_back(f->saveState());
         for (const auto& m : masses) s.masses.push_back(m->saveState());
+        if (coupler) s.coupler = coupler->saveState();
         for (const auto& b : bodies) {
             s.bodies.push_back(b->saveState());
             s.rigid.push_back(RigidBodyState::save(*b->getRigidBody()));
@@ -240,6 +253,7 @@ struct Scene {
             for (std::size_t i = 0; i < actions.size(); ++i) actions[i]->restoreState(s.actions[i]);
         for (std::size_t i = 0; i < floods.size(); ++i) floods[i]->restoreState(s.floods[i]);
         for (std::size_t i = 0; i < masses.size(); ++i) masses[i]->restoreState(s.masses[i]);
+        if (coupler && omit != Omit::InteractiveWater) coupler->restoreState(s.coupler);
         for (std::size_t i = 0; i < bodies.size(); ++i) {
             bodies[i]->restoreState(s.bodies[i]);  // mass properties first: the world inertia follows the body's
             s.rigid[i].restore(*bodies[i]->getRigidBody());
@@ -312,6 +326,31 @@ TEST_CASE("save and restore: bodies coming to rest in calm water fall asleep at 
     INFO(firstDifference(first, again));
     REQUIRE(first.size() == again.size());
     CHECK(std::memcmp(first.data(), again.data(), first.size()) == 0);
+}
+
+TEST_CASE("save and restore: the interactive water's grid and footprints are restored with the bodies",
+          "[bullet][state]") {
+    // The bodies push the grid's water aside and read the water they pushed: without the grid's state and the
+    // footprints last fed to it the run after the restore differs; with them it is the first run.
+    for (const Omit omit : {Omit::Nothing, Omit::InteractiveWater}) {
+        btInteractiveWaterSurface grid(30.0, 15.0, 90, 2.0, 0.1, 0.0, 7.5, 2.5);
+        Scene scene(nullptr, &grid);
+        scene.run(60);
+        const Snapshot snapshot = scene.save();
+        const std::vector<unsigned char> first = scene.run(240);
+        double lo = 0, hi = 0;
+        grid.heightBounds(-7.5, -5.0, 22.5, 10.0, 0.0, lo, hi);
+        CHECK(hi - lo > 1e-3);  // the bodies made waves
+        scene.restore(snapshot, omit);
+        const std::vector<unsigned char> again = scene.run(240);
+        REQUIRE(first.size() == again.size());
+        if (omit == Omit::Nothing) {
+            INFO(firstDifference(first, again));
+            CHECK(std::memcmp(first.data(), again.data(), first.size()) == 0);
+        } else {
+            CHECK(std::memcmp(first.data(), again.data(), first.size()) != 0);
+        }
+    }
 }
 
 TEST_CASE("save and restore: a second scene built the same way continues the first one bit-identically",

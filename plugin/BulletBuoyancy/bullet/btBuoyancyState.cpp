@@ -43,6 +43,7 @@ const char* btBuoyancyStateKindName(btBuoyancyStateKind kind) {
     case btBuoyancyStateKind::Flooding: return "btFloodingAction";
     case btBuoyancyStateKind::TimeVaryingMass: return "btTimeVaryingMassAction";
     case btBuoyancyStateKind::BuoyantBody: return "btBuoyantBody";
+    case btBuoyancyStateKind::InteractiveWater: return "btInteractiveWaterCoupler";
     }
     return "unknown";
 }

@@ -28,6 +28,7 @@ enum class btBuoyancyStateKind : std::uint8_t {
     Flooding = 3,        ///< btFloodingAction::saveState
     TimeVaryingMass = 4, ///< btTimeVaryingMassAction::saveState
     BuoyantBody = 5,     ///< btBuoyantBody::saveState
+    InteractiveWater = 6, ///< btInteractiveWaterCoupler::saveState (the grid and the footprints)
 };
 
 /// Name of a kind for messages, e.g. "btBuoyancyAction"; "unknown" for other values.

@@ -156,10 +156,11 @@ public:
     /// The world's state as a versioned blob of bytes: the water's clock (getTime), the substep counter (getSubstep),
     /// the water frame with its version and whether it is fixed, the gravity last read with its status, and the last
     /// batch's size. With each body's btBuoyancyAction::saveState (and btFloodingAction, btTimeVaryingMassAction,
-    /// btBuoyantBody where used) and the Bullet bodies' own state, a replay or a rollback goes on bit-identically.
-    /// Not saved: the configuration (surfaces, densities, water bodies, event settings and listeners, threads, batching,
-    /// compute backend: build the world the same way) and the state of a water surface that keeps its own
-    /// (btInteractiveWaterSurface's grid, btInteractiveWaterCoupler's footprints). Call between stepSimulation calls.
+    /// btBuoyantBody and btInteractiveWaterCoupler where used) and the Bullet bodies' own state, a replay or a rollback
+    /// goes on bit-identically. Not saved: the configuration (surfaces, densities, water bodies, event settings and
+    /// listeners, threads, batching, compute backend: build the world the same way); the interactive water's grid is
+    /// saved by its coupler (btInteractiveWaterCoupler::saveState), the state of other surfaces that keep their own is
+    /// not. Call between stepSimulation calls.
     std::vector<unsigned char> saveState() const;
     /// Restore what saveState wrote (into this world or one built the same way). Read and checked whole before
     /// anything changes.
