@@ -1,9 +1,9 @@
 #pragma once
 /// @file btBuoyancyState.h
 /// Save and restore (docs/integration.md "Save and restore"): the bytes that btBuoyancyWorld::saveState,
-/// btBuoyancyAction::saveState, btFloodingAction::saveState, btTimeVaryingMassAction::saveState and
-/// btBuoyantBody::saveState write, and their restoreState functions read back, so that a replay or a rollback goes on
-/// bit-identically.
+/// btBuoyancyAction::saveState, btFloodingAction::saveState, btTimeVaryingMassAction::saveState,
+/// btBuoyantBody::saveState and btInteractiveWaterCoupler::saveState write, and their restoreState functions read back,
+/// so that a replay or a rollback goes on bit-identically.
 ///
 /// Format (every integer little-endian, every floating-point number its IEEE bits, little-endian):
 ///   magic "BBST" (4 bytes) · format version (u16, btBuoyancyStateFormatVersion) · btScalar size in bytes (u8: 4 float,
@@ -11,7 +11,8 @@
 /// A blob is read whole and checked (magic, version, precision, kind, sizes, checksum, and the object's own sizes: sample,
 /// drag cluster and water-graph node counts) before anything is changed: a bad blob throws std::invalid_argument with
 /// a message naming the problem, and leaves the object as it was. A newer format version is refused (no migration
-/// yet); a blob made by a build of the other precision is refused (btScalar fields are stored at their size).
+/// yet); a blob made by a build of the other precision is refused (its btScalar numbers, stored as doubles, are not
+/// this build's: a float build's run would not continue a double build's bit for bit).
 
 #include <cstddef>
 #include <cstdint>
