@@ -20,6 +20,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancyMultiBodyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
+#include <BulletBuoyancy/bullet/btBuoyancyState.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 #include <BulletBuoyancy/bullet/btMarineHydrodynamics.h>

@@ -3,6 +3,7 @@
 #include <BulletBuoyancy/bullet/btBulletConvert.h>
 #include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
 #include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>
+#include <BulletBuoyancy/bullet/btBuoyancyState.h>
 #include <BulletBuoyancy/integrals/BoxHydrostatics.h>
 #include <BulletBuoyancy/integrals/SphereHydrostatics.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
@@ -1158,4 +1159,287 @@ void btBuoyancyAction::debugDraw(btIDebugDraw* debugDrawer) {
     debugDrawer->drawLine(c, c + m_result.buoyancyForce / mg, btVector3(0, 0.4, 1));
     const btVector3 com = m_body->getCenterOfMassPosition();
     debugDrawer->drawLine(com, com + m_result.dragForce / mg, btVector3(1, 0.3, 0));
+}
+
+// ---- save and restore (btBuoyancyState.h) ----
+namespace {
+
+/// Which surface a pointer is, as a number that means the same after a restore: 0 none (or a surface the world no
+/// longer has: the warm start would start cold anyway), 1 the world's unbounded water, 2 + k water body k.
+std::uint32_t surfaceIndex(const btBuoyancyWorld& world, const btWaterSurface* s) {
+    if (!s) return 0;
+    if (s == world.getWater()) return 1;
+    const std::vector<btWaterBody>& bodies = world.getWaterBodies();
+    for (std::size_t k = 0; k < bodies.size(); ++k)
+        if (bodies[k].surface == s) return std::uint32_t(2 + k);
+    return 0;
+}
+
+const btWaterSurface* surfaceOf(const btBuoyancyWorld& world, std::uint32_t index, btBuoyancyStateReader& in,
+                                const char* field) {
+    if (index == 0) return nullptr;
+    if (index == 1) {
+        if (!world.getWater()) in.fail(std::string(field) + " names the world's unbounded water, the world has none");
+        return world.getWater();
+    }
+    const std::size_t k = std::size_t(index - 2);
+    if (k >= world.getWaterBodies().size())
+        in.fail(std::string(field) + " names water body " + std::to_string(k) + ", the world has " +
+                std::to_string(world.getWaterBodies().size()));
+    return world.getWaterBodies()[k].surface;
+}
+
+void writeCache(btBuoyancyStateWriter& out, const btBuoyancyWorld& world, const btWaterQueryCache& c) {
+    const std::uint32_t owner = surfaceIndex(world, c.owner);
+    out.u32(owner);
+    if (owner == 0) return;
+    out.u64(c.n);
+    out.f64Vector(c.a);
+    out.f64Vector(c.b);
+}
+
+btWaterQueryCache readCache(btBuoyancyStateReader& in, const btBuoyancyWorld& world, const char* field) {
+    btWaterQueryCache c;
+    c.owner = surfaceOf(world, in.u32(field), in, field);
+    if (!c.owner) return c;
+    c.n = std::size_t(in.u64(field));
+    c.a = in.f64Vector(field);
+    c.b = in.f64Vector(field);
+    return c;
+}
+
+void writeVector(btBuoyancyStateWriter& out, const btVector3& v) {
+    for (int k = 0; k < 3; ++k) out.f64(double(v[k]));
+}
+
+btVector3 readVector(btBuoyancyStateReader& in, const char* field) {
+    btVector3 v;
+    for (int k = 0; k < 3; ++k) v[k] = btScalar(in.f64(field));  // exact: saved from a btScalar of this precision
+    return v;
+}
+
+void writeEigen(btBuoyancyStateWriter& out, const Eigen::Vector3d& v) { out.f64s(v.data(), 3); }
+
+Eigen::Vector3d readEigen(btBuoyancyStateReader& in, const char* field) {
+    Eigen::Vector3d v;
+    in.f64s(v.data(), 3, field);
+    return v;
+}
+
+/// The arrays a blob's drag water must fill: exactly the action's cluster count.
+std::vector<double> readSized(btBuoyancyStateReader& in, std::size_t n, const char* field) {
+    std::vector<double> v = in.f64Vector(field);
+    in.expectCount(v.size(), n, field);
+    return v;
+}
+
+}  // namespace
+
+std::vector<unsigned char> btBuoyancyAction::saveState() const {
+    btBuoyancyStateWriter out(btBuoyancyStateKind::Action);
+    // What the blob must be restored into.
+    out.u64(m_shape->getSamples().size());
+    out.u64(m_shape->getMesh().vertices.size());
+    out.u64(m_shape->getMesh().triangles.size());
+    out.u64(m_drag->size());
+    out.u64(m_drag->probeX.size());
+    // Substep bookkeeping.
+    out.u64(m_frameVersion);
+    out.u64(m_lastSubstep);
+    out.u64(m_evaluatedSubstep);
+    out.boolean(m_pendingActivate);
+    out.boolean(m_pendingSleep);
+    out.f64(double(m_pendingLinearSleep));
+    out.f64(double(m_pendingAngularSleep));
+    out.boolean(m_pendingImpulse);
+    writeVector(out, m_pendingJ);
+    writeVector(out, m_pendingL);
+    out.u64(m_rejected);
+    // Water events.
+    out.f64(m_submergedFraction);
+    out.boolean(m_waterState.inWater);
+    out.boolean(m_waterState.submerged);
+    out.i32(m_waterState.waterBody);
+    // The water chosen.
+    out.u32(surfaceIndex(*m_world, m_activeWater));
+    out.f64(m_activeDensity);
+    out.i32(m_activeWaterBody);
+    out.boolean(m_needsPrime);
+    // Temporal level of detail.
+    m_history.writeState(out);
+    out.i32(m_reuseCooldown);
+    out.u64(m_phase);
+    out.i32(m_interval);
+    out.i32(m_adaptedInterval);
+    out.u8(m_checkMisses);
+    out.i32(m_checkPasses);
+    out.f64(m_passingErrorSum);
+    out.i32(m_probation);
+    out.f64(m_tolerance);
+    out.f64(m_lastWaterSlope);
+    writeEigen(out, m_lastMeanWaterVelocity);
+    out.f64(m_linearDamping);
+    out.f64(m_linearShare);
+    // The drag's water kept for predicted substeps, and the warm starts.
+    out.f64Vector(m_dh);
+    out.f64Vector(m_ux);
+    out.f64Vector(m_uy);
+    out.f64Vector(m_uz);
+    writeCache(out, *m_world, m_waterCache);
+    writeCache(out, *m_world, m_dragCache);
+    writeCache(out, *m_world, m_probeCache);
+    writeCache(out, *m_world, m_patchCache);
+    // Sleeping.
+    out.f64(m_baseLinearSleep);
+    out.f64(m_baseAngularSleep);
+    writeEigen(out, m_lastCom);
+    out.boolean(m_hasLastCom);
+    // The last result.
+    const btBuoyancyResult& r = m_result;
+    out.f64(r.submergedVolume);
+    writeVector(out, r.centreOfBuoyancy);
+    writeVector(out, r.buoyancyForce);
+    writeVector(out, r.buoyancyTorque);
+    writeVector(out, r.dragForce);
+    writeVector(out, r.dragTorque);
+    out.f64(r.wettedArea);
+    out.f64(r.waterlineArea);
+    out.f64(r.addedMass);
+    out.f64(r.time);
+    writeVector(out, r.linearImpulse);
+    writeVector(out, r.angularImpulse);
+    out.boolean(r.applied);
+    out.boolean(r.predicted);
+    out.u8(std::uint8_t(r.status));
+    return out.bytes();
+}
+
+void btBuoyancyAction::restoreState(const unsigned char* data, std::size_t size) {
+    if (m_world->isDispatchingEvents())
+        throw std::logic_error("btBuoyancyAction::restoreState: called from an event callback; restore between "
+                               "stepSimulation calls");
+    btBuoyancyStateReader in(data, size, btBuoyancyStateKind::Action, "btBuoyancyAction::restoreState");
+    in.expectCount(in.u64("sample count"), m_shape->getSamples().size(), "the shape's sample count");
+    in.expectCount(in.u64("mesh vertex count"), m_shape->getMesh().vertices.size(), "the mesh's vertex count");
+    in.expectCount(in.u64("mesh triangle count"), m_shape->getMesh().triangles.size(), "the mesh's triangle count");
+    in.expectCount(in.u64("drag cluster count"), m_drag->size(), "the drag cluster count");
+    in.expectCount(in.u64("velocity probe count"), m_drag->probeX.size(), "the velocity probe count");
+    // Everything is read into locals first, then committed (a bad blob leaves the action as it was).
+    const std::uint64_t frameVersion = in.u64("frame version");
+    const std::uint64_t lastSubstep = in.u64("last substep");
+    const std::uint64_t evaluatedSubstep = in.u64("evaluated substep");
+    const bool pendingActivate = in.boolean("pending activation");
+    const bool pendingSleep = in.boolean("pending sleep");
+    const btScalar pendingLinearSleep = btScalar(in.f64("pending linear sleeping threshold"));
+    const btScalar pendingAngularSleep = btScalar(in.f64("pending angular sleeping threshold"));
+    const bool pendingImpulse = in.boolean("pending impulse");
+    const btVector3 pendingJ = readVector(in, "pending linear impulse");
+    const btVector3 pendingL = readVector(in, "pending angular impulse");
+    const std::uint64_t rejected = in.u64("rejected count");
+    const double submergedFraction = in.f64("submerged fraction");
+    btBuoyancyWaterState waterState;
+    waterState.inWater = in.boolean("in water");
+    waterState.submerged = in.boolean("fully submerged");
+    waterState.waterBody = in.i32("events' water body");
+    const btWaterSurface* activeWater = surfaceOf(*m_world, in.u32("active water"), in, "the active water");
+    const double activeDensity = in.f64("active density");
+    const int activeWaterBody = in.i32("active water body");
+    if (activeWaterBody < -1 || activeWaterBody >= int(m_world->getWaterBodies().size()))
+        in.fail("the body was in water body " + std::to_string(activeWaterBody) + ", the world has " +
+                std::to_string(m_world->getWaterBodies().size()));
+    const bool needsPrime = in.boolean("needs prime");
+    btHydrostaticsHistory history;
+    history.readState(in);
+    const int reuseCooldown = in.i32("reuse cool-down");
+    const std::uint64_t phase = in.u64("phase");
+    const int interval = in.i32("interval");
+    const int adaptedInterval = in.i32("adapted interval");
+    const std::uint8_t checkMisses = in.u8("check misses");
+    const int checkPasses = in.i32("check passes");
+    const double passingErrorSum = in.f64("passing error sum");
+    const int probation = in.i32("probation");
+    const double tolerance = in.f64("tolerance");
+    const double lastWaterSlope = in.f64("last water slope");
+    const Eigen::Vector3d lastMeanWaterVelocity = readEigen(in, "last mean water velocity");
+    const double linearDamping = in.f64("linear damping");
+    const double linearShare = in.f64("linear share");
+    const std::size_t k = m_drag->size();
+    std::vector<double> dh = readSized(in, k, "the drag's kept water heights");
+    std::vector<double> ux = readSized(in, k, "the drag's kept water velocities (x)");
+    std::vector<double> uy = readSized(in, k, "the drag's kept water velocities (y)");
+    std::vector<double> uz = readSized(in, k, "the drag's kept water velocities (z)");
+    btWaterQueryCache waterCache = readCache(in, *m_world, "the hydrostatics' warm start");
+    btWaterQueryCache dragCache = readCache(in, *m_world, "the drag's warm start");
+    btWaterQueryCache probeCache = readCache(in, *m_world, "the velocity probes' warm start");
+    btWaterQueryCache patchCache = readCache(in, *m_world, "the water patch's warm start");
+    const double baseLinearSleep = in.f64("base linear sleeping threshold");
+    const double baseAngularSleep = in.f64("base angular sleeping threshold");
+    const Eigen::Vector3d lastCom = readEigen(in, "last centre of mass");
+    const bool hasLastCom = in.boolean("has last centre of mass");
+    btBuoyancyResult r;
+    r.submergedVolume = in.f64("result submerged volume");
+    r.centreOfBuoyancy = readVector(in, "result centre of buoyancy");
+    r.buoyancyForce = readVector(in, "result buoyancy force");
+    r.buoyancyTorque = readVector(in, "result buoyancy torque");
+    r.dragForce = readVector(in, "result drag force");
+    r.dragTorque = readVector(in, "result drag torque");
+    r.wettedArea = in.f64("result wetted area");
+    r.waterlineArea = in.f64("result waterline area");
+    r.addedMass = in.f64("result added mass");
+    r.time = in.f64("result time");
+    r.linearImpulse = readVector(in, "result linear impulse");
+    r.angularImpulse = readVector(in, "result angular impulse");
+    r.applied = in.boolean("result applied");
+    r.predicted = in.boolean("result predicted");
+    const std::uint8_t status = in.u8("result status");
+    if (status > std::uint8_t(btBuoyancyStatus::GravityNotAlongWaterUp))
+        in.fail("result status " + std::to_string(status) + " is not a btBuoyancyStatus");
+    r.status = static_cast<btBuoyancyStatus>(status);
+    in.finish();
+
+    // Commit (nothing below throws).
+    m_frameVersion = frameVersion;
+    m_lastSubstep = lastSubstep;
+    m_evaluatedSubstep = evaluatedSubstep;
+    m_pendingActivate = pendingActivate;
+    m_pendingSleep = pendingSleep;
+    m_pendingLinearSleep = pendingLinearSleep;
+    m_pendingAngularSleep = pendingAngularSleep;
+    m_pendingImpulse = pendingImpulse;
+    m_pendingJ = pendingJ;
+    m_pendingL = pendingL;
+    m_rejected = rejected;
+    m_submergedFraction = submergedFraction;
+    m_waterState = waterState;
+    m_activeWater = activeWater;
+    m_activeDensity = activeDensity;
+    m_activeWaterBody = activeWaterBody;
+    m_needsPrime = needsPrime;
+    m_history = history;
+    m_reuseCooldown = reuseCooldown;
+    m_phase = phase;
+    m_interval = interval;
+    m_adaptedInterval = adaptedInterval;
+    m_checkMisses = checkMisses;
+    m_checkPasses = checkPasses;
+    m_passingErrorSum = passingErrorSum;
+    m_probation = probation;
+    m_tolerance = tolerance;
+    m_lastWaterSlope = lastWaterSlope;
+    m_lastMeanWaterVelocity = lastMeanWaterVelocity;
+    m_linearDamping = linearDamping;
+    m_linearShare = linearShare;
+    m_dh.swap(dh);
+    m_ux.swap(ux);
+    m_uy.swap(uy);
+    m_uz.swap(uz);
+    m_waterCache = std::move(waterCache);
+    m_dragCache = std::move(dragCache);
+    m_probeCache = std::move(probeCache);
+    m_patchCache = std::move(patchCache);
+    m_baseLinearSleep = baseLinearSleep;
+    m_baseAngularSleep = baseAngularSleep;
+    m_lastCom = lastCom;
+    m_hasLastCom = hasLastCom;
+    m_result = r;
 }

@@ -1,5 +1,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 
+#include <BulletBuoyancy/bullet/btBuoyancyState.h>
+
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyDeviceBackend.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
@@ -503,4 +505,56 @@ void btBuoyancyWorld::debugDrawWater(btIDebugDraw* drawer, const btVector3& cent
         }
         drawGrid(*body.surface, x0, x1, z0, z1, &body);
     }
+}
+
+// ---- save and restore (btBuoyancyState.h) ----
+std::vector<unsigned char> btBuoyancyWorld::saveState() const {
+    btBuoyancyStateWriter out(btBuoyancyStateKind::World);
+    out.f64(m_time);
+    out.u64(m_substep);
+    out.u64(m_frameVersion);
+    out.boolean(m_frameFixed);
+    out.f64s(m_frame.m_origin.data(), 3);
+    out.f64s(m_frame.m_rotation.data(), 9);
+    out.boolean(m_frame.m_identity);
+    out.f64(m_gravity);
+    out.f64s(m_gravityVector.data(), 3);
+    out.boolean(m_gravityKnown);
+    out.u8(std::uint8_t(m_gravityStatus));
+    out.u64(m_lastBatchSize);
+    return out.bytes();
+}
+
+void btBuoyancyWorld::restoreState(const unsigned char* data, std::size_t size) {
+    if (m_dispatching || m_inBatch.load())
+        throw std::logic_error("btBuoyancyWorld::restoreState: called during a step (an event callback or the batch); "
+                               "restore between stepSimulation calls");
+    btBuoyancyStateReader in(data, size, btBuoyancyStateKind::World, "btBuoyancyWorld::restoreState");
+    const double time = in.f64("time");
+    const std::uint64_t substep = in.u64("substep");
+    const std::uint64_t frameVersion = in.u64("frame version");
+    const bool frameFixed = in.boolean("frame fixed");
+    btWaterFrame frame;
+    in.f64s(frame.m_origin.data(), 3, "frame origin");
+    in.f64s(frame.m_rotation.data(), 9, "frame rotation");
+    frame.m_identity = in.boolean("frame is identity");
+    const double gravity = in.f64("gravity");
+    Eigen::Vector3d gravityVector;
+    in.f64s(gravityVector.data(), 3, "gravity vector");
+    const bool gravityKnown = in.boolean("gravity known");
+    const std::uint8_t status = in.u8("gravity status");
+    if (status > std::uint8_t(btBuoyancyStatus::GravityNotAlongWaterUp))
+        in.fail("gravity status " + std::to_string(status) + " is not a btBuoyancyStatus");
+    const std::uint64_t lastBatchSize = in.u64("last batch size");
+    in.finish();
+    m_time = time;
+    m_substep = substep;
+    m_frameVersion = frameVersion;
+    m_frameFixed = frameFixed;
+    m_frame = frame;
+    m_gravity = gravity;
+    m_gravityVector = gravityVector;
+    m_gravityKnown = gravityKnown;
+    m_gravityStatus = static_cast<btBuoyancyStatus>(status);
+    m_lastBatchSize = std::size_t(lastBatchSize);
 }

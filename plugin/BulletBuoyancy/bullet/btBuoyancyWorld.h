@@ -21,6 +21,7 @@
 #include <BulletBuoyancy/bullet/btWaterFrame.h>
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -150,6 +151,27 @@ public:
     void setTime(double t) { m_time = t; }
     /// Number of substeps seen so far.
     std::uint64_t getSubstep() const { return m_substep; }
+
+    ///@name Save and restore (btBuoyancyState.h, docs/integration.md "Save and restore")
+    /// The world's state as a versioned blob of bytes: the water's clock (getTime), the substep counter (getSubstep),
+    /// the water frame with its version and whether it is fixed, the gravity last read with its status, and the last
+    /// batch's size. With each body's btBuoyancyAction::saveState (and btFloodingAction, btTimeVaryingMassAction,
+    /// btBuoyantBody and btInteractiveWaterCoupler where used) and the Bullet bodies' own state, a replay or a rollback
+    /// goes on bit-identically. Not saved: the configuration (surfaces, densities, water bodies, event settings and
+    /// listeners, threads, batching, compute backend: build the world the same way); the interactive water's grid is
+    /// saved by its coupler (btInteractiveWaterCoupler::saveState), the state of other surfaces that keep their own is
+    /// not. Call between stepSimulation calls.
+    std::vector<unsigned char> saveState() const;
+    /// Restore what saveState wrote (into this world or one built the same way). Read and checked whole before
+    /// anything changes.
+    /// @param data, size  the blob (size in bytes)
+    /// @throws std::invalid_argument naming the problem, the world unchanged: not a state blob (wrong magic), another
+    ///         format version, a blob of the other precision, another kind of blob, truncated or corrupted
+    /// @throws std::logic_error when called during a step (from an event callback or the batch)
+    void restoreState(const unsigned char* data, std::size_t size);
+    /// restoreState of a whole vector. @throws std::invalid_argument, std::logic_error (see above)
+    void restoreState(const std::vector<unsigned char>& blob) { restoreState(blob.data(), blob.size()); }
+    ///@}
 
     /// Registered actions (every btBuoyancyAction built with this context, in or out of a world).
     const std::vector<btBuoyancyAction*>& getActions() const { return m_actions; }

@@ -1,5 +1,7 @@
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 
+#include <BulletBuoyancy/bullet/btBuoyancyState.h>
+
 #include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>
 
 #include <BulletBuoyancy/bullet/btBulletConvert.h>
@@ -266,6 +268,50 @@ void btBuoyantBody::updateMassProperties(double mass, const Eigen::Vector3d& cen
     m_body->updateInertiaTensor();  // setMassProps does not update the world inverse inertia
     m_body->setLinearVelocity(v);
     m_body->setInterpolationLinearVelocity(v);
+    if (m_compound) m_compound->updateChildTransform(0, meshInCom);
+    m_meshInCom = meshInCom;
+    m_massProperties = mp;
+}
+
+// ---- save and restore (btBuoyancyState.h) ----
+std::vector<unsigned char> btBuoyantBody::saveState() const {
+    btBuoyancyStateWriter out(btBuoyancyStateKind::BuoyantBody);
+    out.boolean(m_settings.fixed);
+    out.f64(m_massProperties.mass);
+    out.f64(m_massProperties.volume);
+    out.f64(m_massProperties.area);
+    out.f64s(m_massProperties.centre.data(), 3);
+    out.f64s(m_massProperties.inertia.data(), 9);
+    return out.bytes();
+}
+
+void btBuoyantBody::restoreState(const unsigned char* data, std::size_t size) {
+    btBuoyancyStateReader in(data, size, btBuoyancyStateKind::BuoyantBody, "btBuoyantBody::restoreState");
+    const bool fixed = in.boolean("fixed");
+    if (fixed != m_settings.fixed)
+        in.fail(std::string("the blob is a ") + (fixed ? "fixed" : "dynamic") + " body's, this body is " +
+                (m_settings.fixed ? "fixed" : "dynamic"));
+    MassProperties mp;
+    mp.mass = in.f64("mass");
+    mp.volume = in.f64("volume");
+    mp.area = in.f64("area");
+    in.f64s(mp.centre.data(), 3, "centre");
+    in.f64s(mp.inertia.data(), 9, "inertia");
+    in.finish();
+    if (m_settings.fixed) {
+        m_massProperties = mp;
+        return;
+    }
+    btTransform meshInCom;
+    btVector3 moments;
+    try {
+        // The same function of the same numbers as when they were applied: the same frame and moments, bit for bit.
+        applyMassProperties(mp, meshInCom, moments);
+    } catch (const std::invalid_argument& e) {
+        in.fail(e.what());
+    }
+    m_body->setMassProps(btScalar(mp.mass), moments);
+    m_body->updateInertiaTensor();
     if (m_compound) m_compound->updateChildTransform(0, meshInCom);
     m_meshInCom = meshInCom;
     m_massProperties = mp;

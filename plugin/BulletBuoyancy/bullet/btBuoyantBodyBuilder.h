@@ -11,6 +11,7 @@
 #include <LinearMath/btTransform.h>
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -119,6 +120,24 @@ public:
     /// @param inertia   about `centre`, mesh axes, kg·m² (symmetric, positive semi-definite)
     /// @throws std::invalid_argument for a fixed body or non-finite / non-positive input (body unchanged)
     void updateMassProperties(double mass, const Eigen::Vector3d& centre, const Eigen::Matrix3d& inertia);
+
+    ///@name Save and restore (btBuoyancyState.h, docs/integration.md "Save and restore")
+    /// The body's mass properties (mass, centre and inertia, mesh frame) as a versioned blob of bytes: what a water
+    /// graph (btFloodingAction) or a time-varying density map (btTimeVaryingMassAction) changes. Not the Bullet body's
+    /// transform, velocities or activation (save those yourself). Call between stepSimulation calls.
+    std::vector<unsigned char> saveState() const;
+    /// Restore what saveState wrote: the mass properties are set back in place — Bullet's mass and inertia, the mesh
+    /// frame in the COM frame and the compound's child — without moving the COM frame or changing the velocities (the
+    /// Bullet body's own state is restored by the caller, before or after). Read and checked whole before anything
+    /// changes.
+    /// @param data, size  the blob (size in bytes)
+    /// @throws std::invalid_argument naming the problem, the body unchanged: not a state blob, another format version
+    ///         or precision, another kind of blob, truncated or corrupted, a fixed body's blob for a dynamic body (or the
+    ///         other way round), or mass properties that are not finite and positive
+    void restoreState(const unsigned char* data, std::size_t size);
+    /// restoreState of a whole vector. @throws std::invalid_argument (see above)
+    void restoreState(const std::vector<unsigned char>& blob) { restoreState(blob.data(), blob.size()); }
+    ///@}
 
 private:
     void applyMassProperties(const buoyancy::MassProperties& mp, btTransform& outMeshInCom, btVector3& outMoments) const;

@@ -1,6 +1,7 @@
 #include <BulletBuoyancy/bullet/btFloodingAction.h>
 
 #include <BulletBuoyancy/bullet/btBulletConvert.h>
+#include <BulletBuoyancy/bullet/btBuoyancyState.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 #include <BulletBuoyancy/graph/WaterMassProperties.h>
@@ -112,4 +113,84 @@ void btFloodingAction::debugDraw(btIDebugDraw* debugDrawer) {
         debugDrawer->drawLine(c - btVector3(0, s, 0), c + btVector3(0, s, 0), btVector3(0, 0.3, 1));
         debugDrawer->drawLine(c - btVector3(0, 0, s), c + btVector3(0, 0, s), btVector3(0, 0.3, 1));
     }
+}
+
+// ---- save and restore (btBuoyancyState.h) ----
+std::vector<unsigned char> btFloodingAction::saveState() const {
+    btBuoyancyStateWriter out(btBuoyancyStateKind::Flooding);
+    const buoyancy::WaterGraphState::Dynamic d = m_state.dynamicState();
+    out.u64(m_state.size());
+    out.f64Vector(d.water);
+    out.f64Vector(d.centreY);
+    out.f64Vector(d.bottom);
+    out.f64Vector(d.level);
+    out.f64Vector(d.half);
+    for (unsigned char f : d.full) out.u8(f);
+    out.f64s(d.up.data(), 3);
+    out.f64(d.entered);
+    out.f64(d.enteredC);
+    out.f64(d.drained);
+    out.f64(d.drainedC);
+    out.f64(d.initial);
+    out.u64(d.rng);
+    out.u64(m_holes.size());
+    out.f64Vector(m_holes.px);
+    out.f64Vector(m_holes.py);
+    out.f64Vector(m_holes.pz);
+    out.f64Vector(m_holes.openArea);
+    for (int k : m_holes.node) out.i32(k);
+    out.f64(m_dry.mass);
+    out.f64(m_dry.volume);
+    out.f64(m_dry.area);
+    out.f64s(m_dry.centre.data(), 3);
+    out.f64s(m_dry.inertia.data(), 9);
+    out.boolean(m_dirty);
+    return out.bytes();
+}
+
+void btFloodingAction::restoreState(const unsigned char* data, std::size_t size) {
+    btBuoyancyStateReader in(data, size, btBuoyancyStateKind::Flooding, "btFloodingAction::restoreState");
+    const std::size_t n = m_state.size();
+    in.expectCount(in.u64("node count"), n, "the water graph's node count");
+    buoyancy::WaterGraphState::Dynamic d;
+    for (std::vector<double>* v : {&d.water, &d.centreY, &d.bottom, &d.level, &d.half}) {
+        *v = in.f64Vector("node values");
+        in.expectCount(v->size(), n, "a per-node array's size");
+    }
+    d.full.resize(n);
+    for (unsigned char& f : d.full) f = in.u8("full flag");
+    in.f64s(d.up.data(), 3, "up in body axes");
+    d.entered = in.f64("entered volume");
+    d.enteredC = in.f64("entered volume compensation");
+    d.drained = in.f64("drained volume");
+    d.drainedC = in.f64("drained volume compensation");
+    d.initial = in.f64("initial volume");
+    d.rng = in.u64("random generator state");
+    const std::uint64_t holeCount = in.u64("permeable sample count");
+    buoyancy::PermeableSamples holes;
+    for (std::vector<double>* v : {&holes.px, &holes.py, &holes.pz, &holes.openArea}) {
+        *v = in.f64Vector("permeable samples");
+        in.expectCount(v->size(), holeCount, "a permeable sample array's size");
+    }
+    for (double a : holes.openArea)
+        if (!std::isfinite(a) || a < 0) in.fail("a permeable sample has a bad open area");
+    holes.node.resize(holes.px.size());
+    for (int& k : holes.node) {
+        k = in.i32("permeable sample node");
+        if (k < 0 || std::size_t(k) >= n)
+            in.fail("a permeable sample maps to node " + std::to_string(k) + ", the graph has " + std::to_string(n));
+    }
+    buoyancy::MassProperties dry;
+    dry.mass = in.f64("dry mass");
+    dry.volume = in.f64("dry volume");
+    dry.area = in.f64("dry area");
+    in.f64s(dry.centre.data(), 3, "dry centre");
+    in.f64s(dry.inertia.data(), 9, "dry inertia");
+    const bool dirty = in.boolean("dirty");
+    in.finish();
+    // Commit: the samples and sizes are checked above, so neither call throws (and the first would change nothing).
+    setPermeableSamples(std::move(holes));
+    m_state.setDynamicState(d);
+    m_dry = dry;
+    m_dirty = dirty;
 }

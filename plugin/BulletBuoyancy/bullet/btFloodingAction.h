@@ -21,6 +21,7 @@
 
 #include <BulletDynamics/Dynamics/btActionInterface.h>
 
+#include <cstddef>
 #include <vector>
 
 class btBuoyantBody;
@@ -69,6 +70,24 @@ public:
     void setDryMassProperties(const buoyancy::MassProperties& dry);
     /// Push the composed mass properties into the body now (also done every substep).
     void updateBodyMassProperties();
+
+    ///@name Save and restore (btBuoyancyState.h, docs/integration.md "Save and restore")
+    /// The water graph's state as a versioned blob of bytes: each node's water (m³), levels and heights at the last
+    /// pose, the exchange ledger, the random generator of the discharge search, the permeable samples in use and the
+    /// dry body's mass properties. The body's composed mass properties are the btBuoyantBody's: save them with
+    /// btBuoyantBody::saveState. Call between stepSimulation calls.
+    std::vector<unsigned char> saveState() const;
+    /// Restore what saveState wrote into an action of the same water graph (this one or one built the same way).
+    /// Read and checked whole before anything changes; the body is not touched (restore it with
+    /// btBuoyantBody::restoreState).
+    /// @param data, size  the blob (size in bytes)
+    /// @throws std::invalid_argument naming the problem, the action unchanged: not a state blob, another format
+    ///         version or precision, another kind of blob, truncated or corrupted, or a blob of a graph with another
+    ///         node count, or permeable samples naming a node the graph does not have
+    void restoreState(const unsigned char* data, std::size_t size);
+    /// restoreState of a whole vector. @throws std::invalid_argument (see above)
+    void restoreState(const std::vector<unsigned char>& blob) { restoreState(blob.data(), blob.size()); }
+    ///@}
 
 private:
     btBuoyantBody* m_body;

@@ -1,5 +1,7 @@
 #include <BulletBuoyancy/bullet/btHydrostaticsHistory.h>
 
+#include <BulletBuoyancy/bullet/btBuoyancyState.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -211,4 +213,32 @@ void btHydrostaticStiffnessCorrection(btHydrostaticsSnapshot& predicted, const E
     }
     h.force.y() += rhoG * dVolume;
     h.submerged_volume = std::max(h.submerged_volume + dVolume, 0.0);
+}
+
+void btHydrostaticsHistory::writeState(btBuoyancyStateWriter& out) const {
+    out.u32(std::uint32_t(kStored));
+    out.u32(std::uint32_t(kValues));
+    out.i32(m_count);
+    for (const Record& r : m_records) {
+        out.u64(r.substep);
+        out.f64(r.time);
+        out.f64s(r.x.data(), r.x.size());
+        out.boolean(r.waterplane);
+    }
+}
+
+void btHydrostaticsHistory::readState(btBuoyancyStateReader& in) {
+    in.expectCount(in.u32("history records stored"), std::uint32_t(kStored), "the history's stored record count");
+    in.expectCount(in.u32("history values per record"), std::uint32_t(kValues), "the history's values per record");
+    btHydrostaticsHistory h;
+    h.m_count = in.i32("history record count");
+    if (h.m_count < 0 || h.m_count > kStored)
+        in.fail("the history holds " + std::to_string(h.m_count) + " records, at most " + std::to_string(kStored));
+    for (Record& r : h.m_records) {
+        r.substep = in.u64("history record substep");
+        r.time = in.f64("history record time");
+        in.f64s(r.x.data(), r.x.size(), "history record values");
+        r.waterplane = in.boolean("history record waterplane");
+    }
+    *this = h;
 }

@@ -13,6 +13,9 @@
 #include <array>
 #include <cstdint>
 
+class btBuoyancyStateWriter;
+class btBuoyancyStateReader;
+
 /// What one substep's evaluation of a body gives and where the body was (world frame, SI units).
 struct btHydrostaticsSnapshot {
     buoyancy::HydrostaticsResult hydrostatics;  ///< pressure force N, torque about the COM N·m, volume m³, …
@@ -97,6 +100,11 @@ public:
     /// How far a motion is from the extrapolated one, m/s: |Δv| + radius · |Δω|.
     static double velocityDeviation(const Eigen::Vector3d& linearVelocity, const Eigen::Vector3d& angularVelocity,
                                     const btHydrostaticsSnapshot& predicted, double radius);
+
+    /// Save and restore (btBuoyancyAction::saveState): every record held, bit for bit.
+    void writeState(btBuoyancyStateWriter& out) const;
+    /// Read what writeState wrote. @throws std::invalid_argument for a bad record count (the history unchanged)
+    void readState(btBuoyancyStateReader& in);
 
 private:
     /// The newest record and the three `interval` substeps apart before it (indices into m_records), equally

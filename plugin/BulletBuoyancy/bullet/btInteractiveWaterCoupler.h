@@ -14,7 +14,9 @@
 
 #include <BulletDynamics/Dynamics/btActionInterface.h>
 
+#include <cstddef>
 #include <unordered_map>
+#include <vector>
 
 class btInteractiveWaterSurface;
 class btBuoyancyWorld;
@@ -37,6 +39,22 @@ public:
 
     /// Total volume the bodies currently displace (as last fed to the grid), m³.
     double displacedVolume() const;
+
+    ///@name Save and restore (btBuoyancyState.h, docs/integration.md "Save and restore")
+    /// The interactive water's state as a versioned blob of bytes: the grid's elevations (m), velocities (m/s), level
+    /// offset and height range, and each body's footprint last fed to it (centre, m; displaced volume, m³; radius, m),
+    /// its action named by its index in the world's getActions(). Call between stepSimulation calls.
+    std::vector<unsigned char> saveState() const;
+    /// Restore what saveState wrote into this coupler and its grid (the same ones, or ones built the same way with
+    /// the actions registered in the same order). Read and checked whole before anything changes.
+    /// @param data, size  the blob (size in bytes)
+    /// @throws std::invalid_argument naming the problem, the coupler and the grid unchanged: not a state blob, another
+    ///         format version or precision, another kind of blob, truncated or corrupted, a grid of other cell counts,
+    ///         or a footprint of an action index the world does not have
+    void restoreState(const unsigned char* data, std::size_t size);
+    /// restoreState of a whole vector. @throws std::invalid_argument (see above)
+    void restoreState(const std::vector<unsigned char>& blob) { restoreState(blob.data(), blob.size()); }
+    ///@}
 
 private:
     struct Footprint {

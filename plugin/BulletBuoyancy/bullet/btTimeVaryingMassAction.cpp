@@ -1,5 +1,6 @@
 #include <BulletBuoyancy/bullet/btTimeVaryingMassAction.h>
 
+#include <BulletBuoyancy/bullet/btBuoyancyState.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btFloodingAction.h>
 
@@ -52,4 +53,21 @@ void btTimeVaryingMassAction::updateAction(btCollisionWorld*, btScalar) {
         // A bad map at run time leaves the body as it was (never NaN into Bullet); retried at the next version.
         m_version = m_versionFn(t);
     }
+}
+
+// ---- save and restore (btBuoyancyState.h) ----
+std::vector<unsigned char> btTimeVaryingMassAction::saveState() const {
+    btBuoyancyStateWriter out(btBuoyancyStateKind::TimeVaryingMass);
+    out.i64(m_version);
+    out.i64(m_recomputes);
+    return out.bytes();
+}
+
+void btTimeVaryingMassAction::restoreState(const unsigned char* data, std::size_t size) {
+    btBuoyancyStateReader in(data, size, btBuoyancyStateKind::TimeVaryingMass, "btTimeVaryingMassAction::restoreState");
+    const std::int64_t version = in.i64("map version");
+    const std::int64_t recomputes = in.i64("recompute count");
+    in.finish();
+    m_version = version;
+    m_recomputes = recomputes;
 }

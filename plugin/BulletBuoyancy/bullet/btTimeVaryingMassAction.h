@@ -14,8 +14,10 @@
 #include <BulletDynamics/Dynamics/btActionInterface.h>
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 class btBuoyancyWorld;
 class btFloodingAction;
@@ -54,6 +56,20 @@ public:
     /// Recompute and apply the map of time t now. A map that fails (σ negative, NaN, zero everywhere) is
     /// refused and the body keeps its mass properties. @throws std::invalid_argument
     void apply(double t);
+
+    ///@name Save and restore (btBuoyancyState.h, docs/integration.md "Save and restore")
+    /// The map's version in use and the recompute count, as a versioned blob of bytes. The body's mass properties are
+    /// the btBuoyantBody's (btBuoyantBody::saveState) or, with a water graph, the btFloodingAction's dry ones
+    /// (btFloodingAction::saveState). Call between stepSimulation calls.
+    std::vector<unsigned char> saveState() const;
+    /// Restore what saveState wrote. Read and checked whole before anything changes; the body is not touched.
+    /// @param data, size  the blob (size in bytes)
+    /// @throws std::invalid_argument naming the problem, the action unchanged: not a state blob, another format
+    ///         version or precision, another kind of blob, truncated or corrupted
+    void restoreState(const unsigned char* data, std::size_t size);
+    /// restoreState of a whole vector. @throws std::invalid_argument (see above)
+    void restoreState(const std::vector<unsigned char>& blob) { restoreState(blob.data(), blob.size()); }
+    ///@}
 
 private:
     btBuoyantBody* m_body;

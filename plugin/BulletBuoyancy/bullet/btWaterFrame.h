@@ -90,6 +90,7 @@ public:
     static std::string vectorText(const Eigen::Vector3d& v);
 
 private:
+    friend class btBuoyancyWorld;  // restoreState sets a saved frame bit for bit
     Eigen::Vector3d m_origin = Eigen::Vector3d::Zero();
     Eigen::Matrix3d m_rotation = Eigen::Matrix3d::Identity();
     bool m_identity = true;

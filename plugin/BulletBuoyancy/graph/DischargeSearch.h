@@ -49,6 +49,9 @@ public:
         }
     }
 
+    /// The generator's state (save and restore: SplitMix64(state()) continues the same sequence).
+    std::uint64_t state() const { return m_state; }
+
 private:
     std::uint64_t m_state;
 };

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace buoyancy {
 
@@ -218,6 +219,52 @@ void WaterGraphState::flowDiffusion(double dt) {
         const double eq = std::max(0.0, (Wa * Cb - Wb * Ca) / (Ca + Cb));
         transfer(a, b, std::min(q * dt, eq));
     }
+}
+
+}  // namespace buoyancy
+
+namespace buoyancy {
+
+WaterGraphState::Dynamic WaterGraphState::dynamicState() const {
+    Dynamic d;
+    d.water = m_water;
+    d.centreY = m_centreY;
+    d.bottom = m_bottom;
+    d.level = m_level;
+    d.half = m_half;
+    d.full = m_full;
+    d.up = m_up;
+    d.entered = m_entered;
+    d.enteredC = m_enteredC;
+    d.drained = m_drained;
+    d.drainedC = m_drainedC;
+    d.initial = m_initial;
+    d.rng = m_rng.state();
+    return d;
+}
+
+void WaterGraphState::setDynamicState(const Dynamic& d) {
+    const std::size_t n = m_water.size();
+    for (const std::vector<double>* v : {&d.water, &d.centreY, &d.bottom, &d.level, &d.half})
+        if (v->size() != n)
+            throw std::invalid_argument("WaterGraphState: a saved array has " + std::to_string(v->size()) +
+                                        " entries, the graph has " + std::to_string(n) + " nodes");
+    if (d.full.size() != n)
+        throw std::invalid_argument("WaterGraphState: the saved full flags have " + std::to_string(d.full.size()) +
+                                    " entries, the graph has " + std::to_string(n) + " nodes");
+    m_water = d.water;
+    m_centreY = d.centreY;
+    m_bottom = d.bottom;
+    m_level = d.level;
+    m_half = d.half;
+    m_full = d.full;
+    m_up = d.up;
+    m_entered = d.entered;
+    m_enteredC = d.enteredC;
+    m_drained = d.drained;
+    m_drainedC = d.drainedC;
+    m_initial = d.initial;
+    m_rng = SplitMix64(d.rng);
 }
 
 }  // namespace buoyancy

@@ -12,6 +12,7 @@
 #include <BulletBuoyancy/graph/WaterGraph.h>
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <vector>
 
 namespace buoyancy {
@@ -77,6 +78,21 @@ public:
 
     /// Algorithm 1 from `source` at the current pose (advances the seeded generator).
     DischargePath findDischargeNode(int source);
+
+    /// Everything that carries from one substep to the next, for save and restore (btFloodingAction::saveState):
+    /// the water (m³), the ledger, the random generator's state, and the levels and heights of the last pose.
+    struct Dynamic {
+        std::vector<double> water, centreY, bottom, level, half; ///< #nodes each: m³, then world heights, m
+        std::vector<unsigned char> full;                         ///< #nodes: non-zero when full
+        Eigen::Vector3d up = Eigen::Vector3d::UnitY();           ///< world up in body axes
+        double entered = 0, enteredC = 0, drained = 0, drainedC = 0, initial = 0; ///< ledger, m³ (with compensations)
+        std::uint64_t rng = 0;                                   ///< SplitMix64::state
+    };
+    /// The dynamic state, bit for bit.
+    Dynamic dynamicState() const;
+    /// Set the dynamic state saved by dynamicState (a state of this graph).
+    /// @throws std::invalid_argument when an array's size is not the node count (the state unchanged)
+    void setDynamicState(const Dynamic& state);
 
 private:
     void updateLevel(int i);

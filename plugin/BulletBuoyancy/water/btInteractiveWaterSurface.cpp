@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 btInteractiveWaterSurface::btInteractiveWaterSurface(double sizeX, double sizeZ, int resolution, double waveSpeed,
                                                      double damping, double height, double centreX, double centreZ)
@@ -143,4 +144,26 @@ double btInteractiveWaterSurface::waterVolume() const {
         s = t;
     }
     return (s + m_offset * double(m_eta.size())) * m_dx * m_dx;
+}
+
+btInteractiveWaterSurface::Dynamic btInteractiveWaterSurface::dynamicState() const {
+    Dynamic d;
+    d.eta = m_eta;
+    d.velocity = m_vel;
+    d.offset = m_offset;
+    d.min = m_min;
+    d.max = m_max;
+    return d;
+}
+
+void btInteractiveWaterSurface::setDynamicState(const Dynamic& d) {
+    if (d.eta.size() != m_eta.size() || d.velocity.size() != m_vel.size())
+        throw std::invalid_argument("btInteractiveWaterSurface: the saved grid has " + std::to_string(d.eta.size()) +
+                                    " elevations and " + std::to_string(d.velocity.size()) + " velocities, this grid " +
+                                    std::to_string(m_eta.size()) + " cells");
+    m_eta = d.eta;
+    m_vel = d.velocity;
+    m_offset = d.offset;
+    m_min = d.min;
+    m_max = d.max;
 }

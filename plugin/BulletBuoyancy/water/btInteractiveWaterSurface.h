@@ -67,6 +67,19 @@ public:
     /// Set every cell to level h and at rest.
     void reset();
 
+    /// Everything that carries from one step to the next, for save and restore (btInteractiveWaterCoupler::saveState).
+    struct Dynamic {
+        std::vector<double> eta;       ///< #cells elevations before the level offset, m (row by row along x)
+        std::vector<double> velocity;  ///< #cells vertical velocities, m/s
+        double offset = 0;             ///< the uniform level change of every cell, m
+        double min = 0, max = 0;       ///< the height range heightBounds answers, m
+    };
+    /// The grid's dynamic state, bit for bit.
+    Dynamic dynamicState() const;
+    /// Set a state saved by dynamicState from a grid of the same cell counts.
+    /// @throws std::invalid_argument when an array's size is not cellsX() · cellsZ() (the grid unchanged)
+    void setDynamicState(const Dynamic& state);
+
 private:
     void updateRange();
 
