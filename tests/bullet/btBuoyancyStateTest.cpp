@@ -15,6 +15,7 @@
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 #include <BulletBuoyancy/bullet/btFloodingAction.h>
 #include <BulletBuoyancy/bullet/btInteractiveWaterCoupler.h>
+#include <BulletBuoyancy/bullet/btMarineHydrodynamics.h>
 #include <BulletBuoyancy/bullet/btTimeVaryingMassAction.h>
 #include <BulletBuoyancy/graph/WaterIngress.h>
 #include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
@@ -180,6 +181,14 @@ struct Scene {
         }
         for (int i = 0; i < n; ++i) {
             actions.push_back(std::make_unique<btBuoyancyAction>(*bodies[std::size_t(i)], &water));
+            if (i == 4) {  // marine hydrodynamics on body 4: its end-of-step state is carried between substeps
+                btBuoyancySettings bs = actions.back()->getSettings();
+                bs.addedMass = false;
+                actions.back()->setSettings(bs);
+                actions.back()->setMarineHydrodynamics(btMarineHydrodynamics::fromDerivatives(
+                    {-400.0, -900.0, -900.0, -60.0, -120.0, -120.0}, {-50.0, -80.0, -80.0, -10.0, -10.0, -10.0},
+                    {-120.0, -200.0, -200.0, -20.0, -20.0, -20.0}));
+            }
             add(actions.back().get());
             if (i % 4 == 2) {  // water graphs on bodies 2 and 6
                 buoyancy::PermeabilityRegion hole;

@@ -1294,6 +1294,11 @@ std::vector<unsigned char> btBuoyancyAction::saveState() const {
     out.f64(m_baseAngularSleep);
     writeEigen(out, m_lastCom);
     out.boolean(m_hasLastCom);
+    // Marine hydrodynamics: the previous substep's end state its added momentum is carried from (design.md 2.10).
+    out.u64(m_marineSubstep);
+    for (int i = 0; i < 6; ++i) out.f64(m_marineVelocity[i]);
+    for (int i = 0; i < 9; ++i) out.f64(m_marineRotation.data()[i]);
+    writeEigen(out, m_marineCurrent);
     // The last result.
     const btBuoyancyResult& r = m_result;
     out.f64(r.submergedVolume);
@@ -1376,6 +1381,12 @@ void btBuoyancyAction::restoreState(const unsigned char* data, std::size_t size)
     const double baseAngularSleep = in.f64("base angular sleeping threshold");
     const Eigen::Vector3d lastCom = readEigen(in, "last centre of mass");
     const bool hasLastCom = in.boolean("has last centre of mass");
+    const std::uint64_t marineSubstep = in.u64("marine substep");
+    buoyancy::Vector6d marineVelocity;
+    for (int i = 0; i < 6; ++i) marineVelocity[i] = in.f64("marine end-of-step velocity");
+    Eigen::Matrix3d marineRotation;
+    for (int i = 0; i < 9; ++i) marineRotation.data()[i] = in.f64("marine end-of-step rotation");
+    const Eigen::Vector3d marineCurrent = readEigen(in, "marine water velocity");
     btBuoyancyResult r;
     r.submergedVolume = in.f64("result submerged volume");
     r.centreOfBuoyancy = readVector(in, "result centre of buoyancy");
@@ -1437,6 +1448,10 @@ void btBuoyancyAction::restoreState(const unsigned char* data, std::size_t size)
     m_dragCache = std::move(dragCache);
     m_probeCache = std::move(probeCache);
     m_patchCache = std::move(patchCache);
+    m_marineSubstep = marineSubstep;
+    m_marineVelocity = marineVelocity;
+    m_marineRotation = marineRotation;
+    m_marineCurrent = marineCurrent;
     m_baseLinearSleep = baseLinearSleep;
     m_baseAngularSleep = baseAngularSleep;
     m_lastCom = lastCom;
