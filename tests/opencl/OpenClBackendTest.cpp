@@ -256,9 +256,11 @@ public:
 };
 }  // namespace
 
-TEST_CASE("OpenCL: an unknown water surface type falls back to the CPU with a reason, same results", "[opencl]") {
-    TiltedPlane plane;
-    BulletTestWorld w(&plane);
+namespace {
+/// A world on `water` whose surface the device must decline: no body answered by the device, a fallback reason that
+/// contains `reason`, and the CPU's forces.
+void checkFallsBackToCpu(const btWaterSurface& water, const char* reason) {
+    BulletTestWorld w(&water);
     Scene scene;
     scene.populate(w);
     btOpenClBuoyancyBackend* backend = installTestBackend(w.water(), btOpenClOptions::Precision::Auto);
@@ -267,11 +269,17 @@ TEST_CASE("OpenCL: an unknown water surface type falls back to the CPU with a re
     std::uint64_t answered = 0;
     evaluateBoth(w.world(), w.water(), *backend, kDt, cpu, dev, answered);
     CHECK(answered == 0);
-    CHECK(backend->lastFallbackReason().find("not evaluated on the device") != std::string::npos);
+    CHECK(backend->lastFallbackReason().find(reason) != std::string::npos);
     for (std::size_t i = 0; i < cpu.size(); ++i) {
         CHECK(cpu[i].buoyancyForce == dev[i].buoyancyForce);
         CHECK(cpu[i].dragForce == dev[i].dragForce);
     }
+}
+}  // namespace
+
+TEST_CASE("OpenCL: an unknown water surface type falls back to the CPU with a reason, same results", "[opencl]") {
+    TiltedPlane plane;
+    checkFallsBackToCpu(plane, "not evaluated on the device");
 }
 
 namespace {
@@ -323,17 +331,7 @@ TEST_CASE("OpenCL: a user's surface that describes itself as a height grid is ev
 
 TEST_CASE("OpenCL: an inconsistent height-grid description falls back to the CPU and says why", "[opencl]") {
     BadlyDescribedPlane plane;
-    BulletTestWorld w(&plane);
-    Scene scene;
-    scene.populate(w);
-    btOpenClBuoyancyBackend* backend = installTestBackend(w.water(), btOpenClOptions::Precision::Auto);
-    if (!backend) return;
-    std::vector<btBuoyancyResult> cpu, dev;
-    std::uint64_t answered = 0;
-    evaluateBoth(w.world(), w.water(), *backend, kDt, cpu, dev, answered);
-    CHECK(answered == 0);
-    CHECK(backend->lastFallbackReason().find("height-grid description is inconsistent") != std::string::npos);
-    for (std::size_t i = 0; i < cpu.size(); ++i) CHECK(cpu[i].buoyancyForce == dev[i].buoyancyForce);
+    checkFallsBackToCpu(plane, "height-grid description is inconsistent");
 }
 
 TEST_CASE("OpenCL: a river is not taken for uniform flat water: it falls back to the CPU with a reason", "[opencl]") {
@@ -345,20 +343,7 @@ TEST_CASE("OpenCL: a river is not taken for uniform flat water: it falls back to
     rs.width = 6.0;
     rs.surfaceSpeed = 1.2;
     const btRiverSurface river(rs);
-    BulletTestWorld w(&river);
-    Scene scene;
-    scene.populate(w);
-    btOpenClBuoyancyBackend* backend = installTestBackend(w.water(), btOpenClOptions::Precision::Auto);
-    if (!backend) return;
-    std::vector<btBuoyancyResult> cpu, dev;
-    std::uint64_t answered = 0;
-    evaluateBoth(w.world(), w.water(), *backend, kDt, cpu, dev, answered);
-    CHECK(answered == 0);
-    CHECK(backend->lastFallbackReason().find("not evaluated on the device") != std::string::npos);
-    for (std::size_t i = 0; i < cpu.size(); ++i) {
-        CHECK(cpu[i].buoyancyForce == dev[i].buoyancyForce);
-        CHECK(cpu[i].dragForce == dev[i].dragForce);
-    }
+    checkFallsBackToCpu(river, "not evaluated on the device");
 }
 
 TEST_CASE("OpenCL double: trajectories stay close to the CPU's over 3 s of waves", "[opencl][slow]") {
