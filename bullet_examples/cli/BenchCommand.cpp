@@ -20,6 +20,7 @@
 #include <iostream>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 namespace buoyancy::cli {
 
@@ -30,7 +31,35 @@ void addBenchCommand(CLI::App& app, BenchOptions& options) {
     b->add_option("--parts", options.parts,
                   "Parts to run, comma-separated: speed (flat water), waves (speed against error in waves), fig9, "
                   "scaling, lod, opencl, primitives");
+    b->add_option("--opencl-bodies", options.openclBodies,
+                  "Body counts of the opencl part, comma-separated, each 1 to 100000 (default 1,10,100,1000)");
 }
+
+namespace {
+
+/// "1,10,100" → {1, 10, 100}; anything else is a UsageError naming --opencl-bodies.
+std::vector<int> parseOpenClBodies(const std::string& text) {
+    std::vector<int> counts;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        std::size_t used = 0;
+        long n = 0;
+        try {
+            n = std::stol(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || used != item.size() || n < 1 || n > 100000)
+            throw UsageError("--opencl-bodies: '" + item + "' is not a body count from 1 to 100000 (e.g. 1,10,100,1000)");
+        counts.push_back(int(n));
+    }
+    if (counts.empty() || text.back() == ',')
+        throw UsageError("--opencl-bodies: '" + text + "' is not a comma-separated list of body counts (e.g. 1,10,100,1000)");
+    return counts;
+}
+
+}  // namespace
 
 int runBench(const BenchOptions& o) {
     using namespace buoyancy::bench;
@@ -50,6 +79,8 @@ int runBench(const BenchOptions& o) {
             else throw UsageError("--parts: unknown part '" + p + "' (speed, waves, fig9, scaling, lod, opencl, primitives)");
         }
     }
+    // Checked before any part runs, so a typo does not cost the parts before it.
+    const std::vector<int> openclBodies = o.openclBodies.empty() ? std::vector<int>{} : parseOpenClBodies(o.openclBodies);
     namespace fs = std::filesystem;
     std::error_code ec;
     fs::create_directories(o.out, ec);
@@ -192,6 +223,7 @@ int runBench(const BenchOptions& o) {
             co.bodies = {1, 10};
             co.maxBodySubsteps = 200;
         }
+        if (!openclBodies.empty()) co.bodies = openclBodies;
         const TriangleMesh boat = subdivideMesh(loadBoatHull());
         writeOpenClScalingCsv((fs::path(o.out) / "opencl_scaling.csv").string(), runOpenClScaling(boat, "boat-x4", co, log));
     }

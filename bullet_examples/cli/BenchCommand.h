@@ -25,6 +25,8 @@ struct BenchOptions {
     /// which parts to run, comma-separated: speed (flat water), waves (the wave rows), fig9, scaling, lod, primitives
     /// (Bullet primitives in flat water; also: opencl)
     std::string parts = "speed,waves,fig9,scaling,lod,primitives";
+    /// body counts of the opencl part, comma-separated, each 1 to 100,000 (empty: 1,10,100,1000; --quick: 1,10)
+    std::string openclBodies;
 };
 
 /// Register the `bench` subcommand on `app`.
