@@ -2,6 +2,7 @@
 
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 #include <BulletBuoyancy/integrals/BoxHydrostatics.h>
+#include <BulletBuoyancy/integrals/CapsuleHydrostatics.h>
 #include <BulletBuoyancy/integrals/Hydrostatics.h>
 #include <BulletBuoyancy/integrals/SphereHydrostatics.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
@@ -117,11 +118,12 @@ std::vector<PrimitiveRow> runPrimitiveTiming(bool quick, std::ostream& log) {
         return s;
     };
     auto closedRow = [&](const std::string& name, double size, const std::function<double(const Eigen::Isometry3d&)>& f,
-                         const std::function<double(const Eigen::Isometry3d&)>& exactVolume, double solidVolume) {
+                         const std::function<double(const Eigen::Isometry3d&)>& exactVolume, double solidVolume,
+                         const char* path = "closed form") {
         const std::vector<Eigen::Isometry3d> ps = poses(size, 64);
         PrimitiveRow row;
         row.shape = name;
-        row.path = "closed form";
+        row.path = path;
         row.nsPerEvaluation = timeIt(ps, seconds, f);
         for (const auto& p : ps)
             row.maxVolumeErrorPct = std::max(row.maxVolumeErrorPct, 100 * std::abs(f(p) - exactVolume(p)) / solidVolume);
@@ -162,6 +164,10 @@ std::vector<PrimitiveRow> runPrimitiveTiming(bool quick, std::ostream& log) {
         const double R = 0.3, L = 0.5;
         auto exact = [&](const Eigen::Isometry3d& p) { return capsuleVolumeBySlices(p, R, L); };
         const double V = kPi * R * R * 2 * L + 4.0 / 3.0 * kPi * R * R * R;
+        closedRow("capsule r0.3 h1.0", L + R, [&](const Eigen::Isometry3d& p) {
+            return capsuleHydrostatics(p.translation(), p.linear().col(1), L, R, 0.0, 1000, 9.81, p.translation())
+                .submerged_volume;
+        }, exact, V, "exact slices");
         const btCapsuleShape capsule(btScalar(R), btScalar(2 * L));
         meshRow("capsule r0.3 h1.0", capsule, L + R, exact, V);
     }

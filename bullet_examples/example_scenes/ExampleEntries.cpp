@@ -20,6 +20,8 @@ ExampleScene* FftFleetCreateFunc(ExampleOptions& o) { return new SceneFileExampl
 ExampleScene* BeachBoatCreateFunc(ExampleOptions& o) { return new SceneFileExample(o, "beach_boat.json"); }
 ExampleScene* CrateSplashCreateFunc(ExampleOptions& o) { return new SceneFileExample(o, "crate_splash.json"); }
 ExampleScene* GerstnerDemoCreateFunc(ExampleOptions& o) { return new SceneFileExample(o, "demo_boat_gerstner.json"); }
+ExampleScene* ZUpPlankCreateFunc(ExampleOptions& o) { return new SceneFileExample(o, "zup_plank.json"); }
+ExampleScene* RiversAndLakesCreateFunc(ExampleOptions& o) { return new SceneFileExample(o, "rivers_and_lakes.json"); }
 
 namespace {
 
@@ -47,6 +49,10 @@ const ExampleEntry kEntries[] = {
      CrateSplashCreateFunc, 0},
     {1, "Gerstner demo", "The demo of scripts/demo.sh: a boat, a buoy, a crate and a log in Gerstner waves.",
      GerstnerDemoCreateFunc, 0},
+    {1, "Z-up plank", "A robotics-style world with gravity along -z: a plank rides Gerstner waves whose frame is z-up; "
+                      "the view follows the up axis.", ZUpPlankCreateFunc, 0},
+    {1, "Rivers and lakes", "A pool and a lake at different levels and a river whose current carries a boat "
+                            "downstream.", RiversAndLakesCreateFunc, 0},
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancyInvariants.h>
 #include <BulletBuoyancy/bullet/btBuoyancyState.h>
 #include <BulletBuoyancy/integrals/BoxHydrostatics.h>
+#include <BulletBuoyancy/integrals/CapsuleHydrostatics.h>
 #include <BulletBuoyancy/integrals/SphereHydrostatics.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
@@ -298,6 +299,20 @@ btBuoyancyMassResult btBuoyancyAction::setBodyMassFromShape(double density) {
         unit.volume = unit.mass = 4.0 / 3.0 * kPi * R * R * R;
         unit.centre.setZero();
         unit.inertia = Eigen::Matrix3d::Identity() * (0.4 * unit.mass * R * R);
+    } else if (const double r = m_shape->getCapsuleRadius(); r > 0) {
+        // A capsule's in closed form too (design.md 2.5 "Capsules in flat water"): a cylinder of mass m_c and two
+        // half balls of mass m_s together; about its axis m_c r²/2 + 2 m_s r²/5, across it
+        // m_c (r²/4 + h²/3) + m_s (2r²/5 + h² + 3hr/4) (each half ball's centroid 3r/8 past its flat face).
+        constexpr double kPi = 3.14159265358979323846;
+        const double h = m_shape->getCapsuleHalfHeight();
+        const double cylinder = kPi * r * r * 2.0 * h, balls = 4.0 / 3.0 * kPi * r * r * r;
+        unit.volume = unit.mass = cylinder + balls;
+        unit.centre.setZero();
+        const double along = cylinder * r * r / 2.0 + balls * 0.4 * r * r;
+        const double across =
+            cylinder * (r * r / 4.0 + h * h / 3.0) + balls * (0.4 * r * r + h * h + 0.75 * h * r);
+        unit.inertia = Eigen::Matrix3d::Identity() * across;
+        unit.inertia(m_shape->getCapsuleAxis(), m_shape->getCapsuleAxis()) = along;
     }
     const Eigen::Isometry3d meshInCom = toEigen(getMeshInComFrame());
     const double mass = density * unit.volume;
@@ -791,6 +806,12 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
             } else if (flat && m_shape->isBox() && !m_deformable) {
                 // A btBoxShape in flat water: its exact clip in constant time (design.md 2.5 "Boxes in flat water").
                 h = buoyancy::boxHydrostatics(pose, m_shape->getBoxHalfExtents(), flatH, rho, g, com);
+            } else if (flat && m_shape->getCapsuleRadius() > 0 && !m_deformable) {
+                // A btCapsuleShape in flat water: sliced across its axis, exact to rounding (design.md 2.5
+                // "Capsules in flat water").
+                h = buoyancy::capsuleHydrostatics(pose.translation(), pose.linear().col(m_shape->getCapsuleAxis()),
+                                                  m_shape->getCapsuleHalfHeight(), m_shape->getCapsuleRadius(), flatH,
+                                                  rho, g, com);
             } else if (flat && bc.y() + br <= flatH && !m_deformable) {
                 h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (design.md 2.5)
             } else if (method == btBuoyancyMethod::ExactMesh) {

@@ -5,6 +5,7 @@
 #include <BulletBuoyancy/mesh/MeshRepair.h>
 
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
 #include <BulletBuoyancy/atlas/UvLayout.h>
@@ -82,6 +83,13 @@ std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::fromCollisionShape(const
         const btVector3 h = static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin();
         std::const_pointer_cast<btBuoyancyShape>(made)->m_boxHalfExtents =
             Eigen::Vector3d(double(h.x()), double(h.y()), double(h.z()));
+    } else if (shape.getShapeType() == CAPSULE_SHAPE_PROXYTYPE) {
+        // The same dimensions btCollisionShapeToMesh tessellated (local scaling included, as Bullet applies it).
+        const auto& capsule = static_cast<const btCapsuleShape&>(shape);
+        auto* completed = std::const_pointer_cast<btBuoyancyShape>(made).get();
+        completed->m_capsuleRadius = double(capsule.getRadius());
+        completed->m_capsuleHalfHeight = double(capsule.getHalfHeight());
+        completed->m_capsuleAxis = capsule.getUpAxis();
     }
     return made;
 }

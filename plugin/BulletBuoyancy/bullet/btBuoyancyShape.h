@@ -72,6 +72,14 @@ public:
     const Eigen::Vector3d& getBoxHalfExtents() const { return m_boxHalfExtents; }
     /// True for the shape of a btBoxShape (getBoxHalfExtents() is then positive).
     bool isBox() const { return m_boxHalfExtents.x() > 0; }
+    /// > 0 for the shape of a btCapsuleShape: its radius, m (the capsule is centred at the mesh origin, its axis
+    /// along getCapsuleAxis()); in flat water its hydrostatics are then buoyancy::capsuleHydrostatics (exact to
+    /// rounding, no tessellation) instead of the mesh path. 0 for every other shape.
+    double getCapsuleRadius() const { return m_capsuleRadius; }
+    /// For the shape of a btCapsuleShape: half the length of its cylinder (Bullet's getHalfHeight()), m.
+    double getCapsuleHalfHeight() const { return m_capsuleHalfHeight; }
+    /// For the shape of a btCapsuleShape: the mesh-frame axis it lies along (0 x, 1 y, 2 z; Bullet's getUpAxis()).
+    int getCapsuleAxis() const { return m_capsuleAxis; }
     /// True when the samples were baked through an atlas the library generated (the model's UVs were missing or
     /// unusable); false for the model's own UVs and for ExactMesh (no texture).
     bool usesGeneratedUvs() const { return m_uvGenerated; }
@@ -96,6 +104,9 @@ private:
     double m_boundsRadius = 0;
     double m_sphereRadius = 0;
     Eigen::Vector3d m_boxHalfExtents = Eigen::Vector3d::Zero();
+    double m_capsuleRadius = 0;
+    double m_capsuleHalfHeight = 0;
+    int m_capsuleAxis = 1;
     bool m_uvGenerated = false;
     std::vector<std::string> m_uvProblems;
     std::vector<buoyancy::MeshWarning> m_meshWarnings;
