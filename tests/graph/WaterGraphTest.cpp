@@ -1,5 +1,7 @@
 // Water graph core: validation, level models, Algorithm 1 (paper Fig. 7), conservation,
-// communicating vessels, orifice filling vs Torricelli, mass properties and their composition.
+// communicating vessels, orifice filling vs Torricelli, mass properties and their composition, and the flow
+// between compartments against closed forms (design.md 4.1): Poiseuille's exponential levelling, the orifice's
+// levelling time.
 // Every expected value comes from an analytic formula or a computation written here.
 #include <catch2/catch.hpp>
 
@@ -12,7 +14,9 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 using namespace buoyancy;
@@ -378,4 +382,124 @@ TEST_CASE("exchange never overshoots: capacity, zero and level limits", "[graph]
     CHECK(s.exchange(0, 1.0, 0.0) == 0.0);
     CHECK_THROWS_AS(s.setWater(0, 0.6), std::invalid_argument);
     CHECK_THROWS_AS(s.setWater(3, 0.1), std::invalid_argument);
+}
+
+namespace {
+
+/// A box vessel (box level model, capacity = its volume) of base sx × sz and height sy, centred at `pos`, holding
+/// water to `depth` above its bottom.
+WaterNode boxVessel(const std::string& name, Eigen::Vector3d pos, double sx, double sy, double sz, double depth) {
+    WaterNode n = sphereNode(name, pos, sx * sy * sz, sx * depth * sz);
+    n.shape = WaterNodeShape::Box;
+    n.size = {sx, sy, sz};
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("two vessels joined by a long narrow pipe level out with the Poiseuille time constant", "[graph]") {
+    // Closed form (design.md 4.1): upright box vessels of horizontal sections A1 and A2, water levels h1 > h2,
+    // joined by a pipe of radius r and length L. Laminar flow Q = π ρ g Δh r⁴ / (8 μ L) (paper eq. 14) with
+    // A1 dh1/dt = −Q and A2 dh2/dt = +Q gives dΔh/dt = −Q (1/A1 + 1/A2) = −Δh/τ, so Δh = Δh0 e^(−t/τ) with
+    //   τ = 8 μ L A1 A2 / (π r⁴ ρ g (A1 + A2)).
+    const double rho = 1000, g = 9.81, mu = 1.0e-3, cd = 0.61;
+    const double r = 1.0e-3, L = 1.0;                       // a 2 mm bore, 1 m long
+    const double A1 = 0.1 * 0.1, A2 = 0.2 * 0.1;            // m²
+    const double dh0 = 0.1;                                 // m
+    const double tau = 8 * mu * L * A1 * A2 / (kPi * r * r * r * r * rho * g * (A1 + A2));
+    // The closed form holds for the model and for real water only in laminar, fully developed, slow flow; checked
+    // at Δh0 (every quantity falls with Δh):
+    //  - Poiseuille below the orifice cap C_d π r² √(2 g Δh) (else the cap would be measured),
+    //  - Reynolds number Re = ρ v (2r) / μ < 2000 with the mean speed v = ρ g Δh r² / (8 μ L),
+    //  - the pipe long against its entrance length ≈ 0.06 Re (2r),
+    //  - the velocity head v²/2g small against Δh (it is not part of the driving head).
+    const double poiseuille0 = kPi * rho * g * dh0 * r * r * r * r / (8 * mu * L);
+    const double orifice0 = cd * kPi * r * r * std::sqrt(2 * g * dh0);
+    const double v0 = rho * g * dh0 * r * r / (8 * mu * L);
+    const double Re0 = rho * v0 * 2 * r / mu;
+    INFO("tau " << tau << " s, Poiseuille/orifice " << poiseuille0 / orifice0 << ", Re " << Re0 << ", entrance length "
+                << 0.06 * Re0 * 2 * r << " m, v^2/2g " << v0 * v0 / (2 * g) << " m");
+    REQUIRE(poiseuille0 < 0.2 * orifice0);
+    REQUIRE(Re0 < 500);
+    REQUIRE(0.06 * Re0 * 2 * r < 0.05 * L);
+    REQUIRE(v0 * v0 / (2 * g) < 0.01 * dh0);
+
+    WaterGraph gr;
+    gr.viscosity = mu;
+    gr.dischargeCoefficient = cd;
+    // Bottoms at y = −0.5, levels at +0.05 and −0.05.
+    gr.nodes = {boxVessel("a", {0, 0, 0}, 0.1, 1.0, 0.1, 0.55), boxVessel("b", {1, 0, 0}, 0.2, 1.0, 0.1, 0.45)};
+    gr.edges = {edge(0, 1, r, L)};
+    WaterGraphState s(gr);
+    REQUIRE(s.levelHeight(0) - s.levelHeight(1) == Approx(dh0).epsilon(1e-9));
+    // Explicit steps of dt = τ/1730 ≈ 1 s: the step's own error on the rate is dt/(2τ) ≈ 0.03 %.
+    const double dt = 1.0;
+    double st = 0, sy = 0, stt = 0, sty = 0;
+    int n = 0;
+    double worst = 0;
+    for (double t = dt; t <= 3 * tau; t += dt) {
+        s.flow(dt, rho, g);
+        const double dh = s.levelHeight(0) - s.levelHeight(1);
+        REQUIRE(dh > 0);
+        const double y = std::log(dh / dh0);
+        worst = std::max(worst, std::abs(y + t / tau));  // against the closed form's straight line
+        st += t;
+        sy += y;
+        stt += t * t;
+        sty += t * y;
+        ++n;
+    }
+    // Least-squares slope of ln Δh over three time constants: −1/τ.
+    const double slope = (n * sty - st * sy) / (n * stt - st * st);
+    const double tauSim = -1 / slope;
+    std::printf("Poiseuille vessels: time constant %.2f s, closed form %.2f s (%+.3f%%), worst |ln dh - ln dh_cf| %.2e\n",
+                tauSim, tau, 100 * (tauSim / tau - 1), worst);
+    // Within 1 %: the only approximations are the explicit step (0.03 %) and the box level model, exact for an
+    // upright box; a Poiseuille rate off by 2 halves τ.
+    CHECK(std::abs(tauSim / tau - 1) < 0.01);
+    CHECK(worst < 0.03);  // ln Δh within 0.03 of the line over 3 τ (it falls by 3)
+    CHECK(s.totalWater() == Approx(0.1 * 0.1 * 0.55 + 0.2 * 0.1 * 0.45).epsilon(1e-12));
+}
+
+TEST_CASE("two compartments joined by an orifice level out in the Torricelli time", "[graph]") {
+    // Closed form (design.md 4.1): box compartments of horizontal sections A1 and A2 joined by a short wide pipe, an
+    // orifice of area a = π r². Orifice flow Q = C_d a √(2 g Δh) with A1 dh1/dt = −Q, A2 dh2/dt = +Q gives
+    // dΔh/dt = −C_d a √(2g) (1/A1 + 1/A2) √Δh, so √Δh falls linearly, Δh = Δh0 (1 − t/T)², reaching 0 at
+    //   T = 2 √Δh0 / (C_d a √(2g) (1/A1 + 1/A2)).
+    const double rho = 1000, g = 9.81, mu = 1.0e-3, cd = 0.61;
+    const double r = 0.02, L = 0.05;                        // a 4 cm bore, 5 cm long
+    const double a = kPi * r * r;
+    const double A1 = 0.5 * 0.5, A2 = 1.0 * 0.5;            // m²
+    const double dh0 = 0.6;                                 // m
+    const double T = 2 * std::sqrt(dh0) / (cd * a * std::sqrt(2 * g) * (1 / A1 + 1 / A2));
+    // The orifice rate is the smaller of the two (the one the model uses) down to Δh* where they meet:
+    // √Δh* = 8 μ L C_d √(2g) / (ρ g r²), here ≈ 1e-7 m; below it the Poiseuille tail (time constant
+    // 8 μ L A1 A2 / (π r⁴ ρ g (A1 + A2)) ≈ 0.014 s) adds a few steps, under 0.1 % of T.
+    const double sqrtDhStar = 8 * mu * L * cd * std::sqrt(2 * g) / (rho * g * r * r);
+    REQUIRE(sqrtDhStar * sqrtDhStar < 1e-6 * dh0);
+
+    WaterGraph gr;
+    gr.viscosity = mu;
+    gr.dischargeCoefficient = cd;
+    // Bottoms at y = −0.5; depths 0.8 and 0.2 m, common depth at the end (0.2 + 0.1)/0.75 = 0.4 m.
+    gr.nodes = {boxVessel("a", {0, 0, 0}, 0.5, 1.0, 0.5, 0.8), boxVessel("b", {2, 0, 0}, 1.0, 1.0, 0.5, 0.2)};
+    gr.edges = {edge(0, 1, r, L)};
+    WaterGraphState s(gr);
+    REQUIRE(s.levelHeight(0) - s.levelHeight(1) == Approx(dh0).epsilon(1e-9));
+    const double dt = 0.01;  // T/7600
+    double t = 0, dhHalf = -1;
+    while (s.levelHeight(0) - s.levelHeight(1) > 1e-9 && t < 3 * T) {
+        s.flow(dt, rho, g);
+        t += dt;
+        if (dhHalf < 0 && t >= 0.5 * T) dhHalf = s.levelHeight(0) - s.levelHeight(1);
+    }
+    std::printf("orifice compartments: level out in %.3f s, closed form %.3f s (%+.3f%%); dh at T/2 %.5f m, closed "
+                "form %.5f m\n",
+                t, T, 100 * (t / T - 1), dhHalf, dh0 / 4);
+    // Within 1 %: the explicit step's error is O(dt/T) ≈ 1e-4 and the tail under Δh* under 0.1 %; an orifice rate
+    // off by 2 halves T.
+    CHECK(std::abs(t / T - 1) < 0.01);
+    CHECK(std::abs(dhHalf / (dh0 / 4) - 1) < 0.01);  // Δh(T/2) = Δh0/4
+    CHECK(s.levelHeight(0) - (-0.5) == Approx(0.4).epsilon(1e-6));
+    CHECK(s.totalWater() == Approx(0.5 * 0.5 * 0.8 + 1.0 * 0.5 * 0.2).epsilon(1e-12));
 }
