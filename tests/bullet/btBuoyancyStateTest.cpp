@@ -10,6 +10,8 @@
 // std::invalid_argument naming the problem and change nothing; a restore from an event callback is refused.
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyEvents.h>
+#include <BulletBuoyancy/bullet/btBuoyancyImmediate.h>
+#include <BulletBuoyancy/bullet/btBuoyancyMultiBodyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyState.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
@@ -23,6 +25,10 @@
 #include <BulletBuoyancy/water/btInteractiveWaterSurface.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 #include <btBulletDynamicsCommon.h>
 #include <catch2/catch.hpp>
 
@@ -536,4 +542,222 @@ TEST_CASE("save and restore: a restore from an event callback is refused", "[bul
     REQUIRE(restorer.messages.size() >= 2);
     CHECK_THAT(restorer.messages[0], Contains("btBuoyancyWorld::restoreState") && Contains("between stepSimulation calls"));
     CHECK_THAT(restorer.messages[1], Contains("btBuoyancyAction::restoreState") && Contains("event callback"));
+}
+
+namespace {
+
+/// Append the bytes of `v` to `out` (a trajectory compared with memcmp).
+template <class T>
+void appendBytes(std::vector<unsigned char>& out, const T& v) {
+    const auto* p = reinterpret_cast<const unsigned char*>(&v);
+    out.insert(out.end(), p, p + sizeof v);
+}
+
+/// A user's own loop with btBuoyancyImmediate: a tilted box in Gerstner waves (temporal level of detail on).
+struct OwnLoop {
+    btGerstnerWaterSurface water{sea()};
+    btBoxShape box{btVector3(0.6f, 0.25f, 0.4f)};
+    std::unique_ptr<btRigidBody> body;
+    std::unique_ptr<btBuoyancyImmediate> buoyancy;
+    double time = 0;
+    const btVector3 gravity{0, btScalar(-9.81), 0};
+
+    explicit OwnLoop(const btVector3& half = btVector3(0.6f, 0.25f, 0.4f)) : box(half) {
+        const btScalar mass = btScalar(450.0 * 8 * double(half.x() * half.y() * half.z()));
+        btVector3 inertia;
+        box.calculateLocalInertia(mass, inertia);
+        btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, &box, inertia);
+        info.m_startWorldTransform.setOrigin(btVector3(0.3f, 0.4f, -0.2f));
+        info.m_startWorldTransform.setRotation(btQuaternion(btVector3(1, 0.2f, 0.4f).normalized(), btScalar(0.5)));
+        body = std::make_unique<btRigidBody>(info);
+        buoyancy = std::make_unique<btBuoyancyImmediate>(body.get());
+    }
+    /// `n` steps of the loop; the body's transform and velocities after each, as bytes.
+    std::vector<unsigned char> run(int n) {
+        std::vector<unsigned char> out;
+        for (int i = 0; i < n; ++i) {
+            body->setLinearVelocity(body->getLinearVelocity() + gravity * btScalar(kSubstep));
+            time += kSubstep;
+            buoyancy->applyBuoyancyImpulse(water, gravity, 1000.0, time, kSubstep);
+            btTransform next;
+            body->predictIntegratedTransform(btScalar(kSubstep), next);
+            body->proceedToTransform(next);
+            appendBytes(out, body->getWorldTransform());
+            appendBytes(out, body->getLinearVelocity());
+            appendBytes(out, body->getAngularVelocity());
+        }
+        return out;
+    }
+};
+
+/// A chain of three boxes joined by hinges in a multibody world, in Gerstner waves; no contacts.
+struct ChainInWaves {
+    btDefaultCollisionConfiguration config;
+    btCollisionDispatcher dispatcher{&config};
+    btDbvtBroadphase broadphase;
+    btMultiBodyConstraintSolver solver;
+    btMultiBodyDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+    btGerstnerWaterSurface water{sea()};
+    btBuoyancyWorld buoyancy{&world, &water, 1000.0};
+    btBoxShape box{btVector3(0.5f, 0.2f, 0.3f)};
+    std::unique_ptr<btMultiBody> chain;
+    std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
+    std::unique_ptr<btBuoyancyMultiBodyAction> action;
+
+    ChainInWaves() {
+        world.setGravity(btVector3(0, btScalar(-9.81), 0));
+        const btScalar mass = btScalar(500.0 * 8 * 0.5 * 0.2 * 0.3);
+        btVector3 inertia;
+        box.calculateLocalInertia(mass, inertia);
+        chain = std::make_unique<btMultiBody>(2, mass, inertia, false, false);
+        btTransform start = btTransform::getIdentity();
+        start.setOrigin(btVector3(0, 0.3f, 0));
+        start.setRotation(btQuaternion(btVector3(0, 1, 0), btScalar(0.4)));
+        chain->setBaseWorldTransform(start);
+        for (int i = 0; i < 2; ++i)
+            chain->setupRevolute(i, mass, inertia, i - 1, btQuaternion::getIdentity(), btVector3(0, 0, 1),
+                                 btVector3(0.5f, 0, 0), btVector3(0.5f, 0, 0), true);
+        chain->finalizeMultiDof();
+        chain->setJointPos(0, btScalar(0.2));
+        chain->setJointPos(1, btScalar(-0.3));
+        world.addMultiBody(chain.get());
+        for (int link = -1; link < 2; ++link) {
+            auto c = std::make_unique<btMultiBodyLinkCollider>(chain.get(), link);
+            c->setCollisionShape(&box);
+            world.addCollisionObject(c.get(), btBroadphaseProxy::DefaultFilter,
+                                     btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::DefaultFilter);
+            if (link < 0)
+                chain->setBaseCollider(c.get());
+            else
+                chain->getLink(link).m_collider = c.get();
+            colliders.push_back(std::move(c));
+        }
+        syncColliders();
+        action = std::make_unique<btBuoyancyMultiBodyAction>(chain.get(), &buoyancy);
+        world.addAction(action.get());
+    }
+    ~ChainInWaves() {
+        world.removeAction(action.get());
+        for (auto& c : colliders) world.removeCollisionObject(c.get());
+        world.removeMultiBody(chain.get());
+    }
+    void syncColliders() {
+        btAlignedObjectArray<btQuaternion> q;
+        btAlignedObjectArray<btVector3> o;
+        chain->updateCollisionObjectWorldTransforms(q, o);
+    }
+    /// `n` substeps; every part's transform and the joint velocities after each, as bytes.
+    std::vector<unsigned char> run(int n) {
+        std::vector<unsigned char> out;
+        for (int i = 0; i < n; ++i) {
+            world.stepSimulation(btScalar(kSubstep), 1, btScalar(kSubstep));
+            for (const auto& c : colliders) appendBytes(out, c->getWorldTransform());
+            appendBytes(out, chain->getBaseVel());
+            for (int j = 0; j < 2; ++j) appendBytes(out, chain->getJointVel(j));
+        }
+        return out;
+    }
+    /// The multibody's own state, as a user saves it: base pose and velocities, joint positions and velocities.
+    struct Own {
+        btTransform base;
+        btVector3 baseVel, baseOmega;
+        btScalar jointPos[2], jointVel[2];
+    };
+    Own saveOwn() const {
+        Own s{chain->getBaseWorldTransform(), chain->getBaseVel(), chain->getBaseOmega(), {}, {}};
+        for (int j = 0; j < 2; ++j) {
+            s.jointPos[j] = chain->getJointPos(j);
+            s.jointVel[j] = chain->getJointVel(j);
+        }
+        return s;
+    }
+    void restoreOwn(const Own& s) {
+        chain->setBaseWorldTransform(s.base);
+        chain->setBaseVel(s.baseVel);
+        chain->setBaseOmega(s.baseOmega);
+        for (int j = 0; j < 2; ++j) {
+            chain->setJointPos(j, s.jointPos[j]);
+            chain->setJointVel(j, s.jointVel[j]);
+        }
+        syncColliders();
+    }
+};
+
+}  // namespace
+
+TEST_CASE("save and restore: immediate mode in a user's own loop runs on bit-identically", "[bullet][state]") {
+    OwnLoop loop;
+    loop.run(60);
+    const std::vector<unsigned char> blob = loop.buoyancy->saveState();
+    const btTransform pose = loop.body->getWorldTransform();
+    const btVector3 v = loop.body->getLinearVelocity(), w = loop.body->getAngularVelocity();
+    const double time = loop.time;
+    const std::vector<unsigned char> first = loop.run(240);
+
+    const auto restoreBody = [&] {
+        loop.body->setCenterOfMassTransform(pose);
+        loop.body->setLinearVelocity(v);
+        loop.body->setAngularVelocity(w);
+        loop.time = time;
+    };
+    restoreBody();
+    loop.buoyancy->restoreState(blob);
+    const std::vector<unsigned char> second = loop.run(240);
+    INFO(firstDifference(first, second));
+    CHECK(first == second);
+
+    // Without the immediate object's state (its level-of-detail history and caches) the run is another one.
+    restoreBody();
+    const std::vector<unsigned char> third = loop.run(240);
+    CHECK(third != first);
+}
+
+TEST_CASE("save and restore: immediate mode refuses bad blobs and keeps its state", "[bullet][state]") {
+    OwnLoop loop;
+    loop.run(30);
+    const std::vector<unsigned char> blob = loop.buoyancy->saveState();
+    loop.run(5);
+    const std::vector<unsigned char> current = loop.buoyancy->saveState();
+    REQUIRE(current != blob);
+    for (std::size_t n = 0; n < blob.size(); n += 7)
+        CHECK_THROWS_WITH(loop.buoyancy->restoreState(blob.data(), n), Contains("btBuoyancyImmediate::restoreState"));
+    // An action's blob is not an immediate one.
+    const std::vector<unsigned char> actionBlob = loop.buoyancy->getAction().saveState();
+    CHECK_THROWS_WITH(loop.buoyancy->restoreState(actionBlob), Contains("expected a btBuoyancyImmediate state"));
+    // Another body's state: the context part would apply, the evaluation part is refused; nothing changes.
+    OwnLoop other(btVector3(0.3f, 0.3f, 0.3f));
+    other.run(10);
+    CHECK_THROWS_AS(loop.buoyancy->restoreState(other.buoyancy->saveState()), std::invalid_argument);
+    CHECK(loop.buoyancy->saveState() == current);
+}
+
+TEST_CASE("save and restore: a btMultiBody chain in waves runs on bit-identically", "[bullet][state][multibody]") {
+    ChainInWaves scene;
+    scene.run(60);
+    const std::vector<unsigned char> world = scene.buoyancy.saveState();
+    const std::vector<unsigned char> action = scene.action->saveState();
+    const ChainInWaves::Own own = scene.saveOwn();
+    const std::vector<unsigned char> first = scene.run(240);
+    REQUIRE(scene.action->getSubmergedVolume() > 0);
+
+    scene.restoreOwn(own);
+    scene.buoyancy.restoreState(world);
+    scene.action->restoreState(action);
+    const std::vector<unsigned char> second = scene.run(240);
+    INFO(firstDifference(first, second));
+    CHECK(first == second);
+
+    // Leaving out the action's state (its parts' histories) gives another run.
+    scene.restoreOwn(own);
+    scene.buoyancy.restoreState(world);
+    const std::vector<unsigned char> third = scene.run(240);
+    CHECK(third != first);
+
+    // Bad blobs: refused by name, nothing changed.
+    const std::vector<unsigned char> current = scene.action->saveState();
+    CHECK_THROWS_WITH(scene.action->restoreState(world), Contains("expected a btBuoyancyMultiBodyAction state"));
+    std::vector<unsigned char> corrupt = action;
+    corrupt[corrupt.size() / 2] ^= 0x40;
+    CHECK_THROWS_WITH(scene.action->restoreState(corrupt), Contains("checksum"));
+    CHECK(scene.action->saveState() == current);
 }

@@ -1,5 +1,6 @@
 #include <BulletBuoyancy/bullet/btBuoyancyImmediate.h>
 
+#include <BulletBuoyancy/bullet/btBuoyancyState.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
@@ -39,4 +40,27 @@ const btBuoyancyResult& btBuoyancyImmediate::applyBuoyancyImpulse(const btWaterS
     m_action->updateAction(nullptr, btScalar(dt));
     m_context.setWater(nullptr);  // the caller's surface is not kept
     return m_action->getLastResult();
+}
+
+std::vector<unsigned char> btBuoyancyImmediate::saveState() const {
+    btBuoyancyStateWriter out(btBuoyancyStateKind::Immediate);
+    out.blob(m_context.saveState());
+    out.blob(m_action->saveState());
+    return out.bytes();
+}
+
+void btBuoyancyImmediate::restoreState(const unsigned char* data, std::size_t size) {
+    btBuoyancyStateReader in(data, size, btBuoyancyStateKind::Immediate, "btBuoyancyImmediate::restoreState");
+    const std::vector<unsigned char> context = in.blob("context");
+    const std::vector<unsigned char> action = in.blob("evaluation");
+    in.finish();
+    // Each part checks itself; if the second refuses after the first applied, the first is put back as it was.
+    const std::vector<unsigned char> before = m_context.saveState();
+    m_context.restoreState(context);
+    try {
+        m_action->restoreState(action);
+    } catch (...) {
+        m_context.restoreState(before);
+        throw;
+    }
 }

@@ -13,7 +13,9 @@
 #include <LinearMath/btTransform.h>
 #include <LinearMath/btVector3.h>
 
+#include <cstddef>
 #include <memory>
+#include <vector>
 
 class btRigidBody;
 class btWaterSurface;
@@ -61,6 +63,17 @@ public:
     btBuoyancyAction& getAction() { return *m_action; }
     /// The private context: its water frame (setWaterFrame for a frame of your own) and clock.
     btBuoyancyWorld& getContext() { return m_context; }
+
+    /// The state this object carries from step to step, as bytes (btBuoyancyState.h): its context's (water frame,
+    /// clock, gravity) and its evaluation's (level-of-detail history, caches, sleep decision, last result). With your
+    /// body's own state (transform, velocities) restored too, the next steps repeat bit for bit.
+    std::vector<unsigned char> saveState() const;
+    /// Restore what saveState wrote into an object built the same way (same shape and settings). Read and checked
+    /// whole; a blob either applies completely or not at all.
+    /// @throws std::invalid_argument naming the problem (wrong kind, truncated, checksum, another body's state, ...)
+    void restoreState(const unsigned char* data, std::size_t size);
+    /// restoreState of a whole vector. @throws std::invalid_argument (see above)
+    void restoreState(const std::vector<unsigned char>& blob) { restoreState(blob.data(), blob.size()); }
 
 private:
     btBuoyancyWorld m_context;

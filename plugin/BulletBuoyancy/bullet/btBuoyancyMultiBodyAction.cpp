@@ -1,6 +1,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancyMultiBodyAction.h>
 
 #include <BulletBuoyancy/bullet/btBuoyancyImmediate.h>
+#include <BulletBuoyancy/bullet/btBuoyancyState.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
@@ -117,4 +118,41 @@ void btBuoyancyMultiBodyAction::updateAction(btCollisionWorld* collisionWorld, b
     m_deltaV.resize(dofs);
     mb.calcAccelerationDeltasMultiDof(&m_force[0], &m_deltaV[0], m_scratchR, m_scratchV);
     mb.applyDeltaVeeMultiDof(&m_deltaV[0], 1);
+}
+
+std::vector<unsigned char> btBuoyancyMultiBodyAction::saveState() const {
+    btBuoyancyStateWriter out(btBuoyancyStateKind::MultiBodyAction);
+    out.u64(m_lastSubstep);
+    out.u64(m_parts.size());
+    for (const auto& part : m_parts) {
+        out.i32(part->link);
+        out.blob(part->buoyancy->saveState());
+    }
+    return out.bytes();
+}
+
+void btBuoyancyMultiBodyAction::restoreState(const unsigned char* data, std::size_t size) {
+    btBuoyancyStateReader in(data, size, btBuoyancyStateKind::MultiBodyAction, "btBuoyancyMultiBodyAction::restoreState");
+    const std::uint64_t lastSubstep = in.u64("last substep");
+    in.expectCount(in.u64("part count"), m_parts.size(), "part count");
+    std::vector<std::vector<unsigned char>> parts;
+    for (const auto& part : m_parts) {
+        const std::int32_t link = in.i32("part link");
+        if (link != part->link)
+            in.fail("a part is link " + std::to_string(link) + " in the blob, link " + std::to_string(part->link) +
+                    " here (a state of another multibody)");
+        parts.push_back(in.blob("part state"));
+    }
+    in.finish();
+    // Each part checks itself; if one refuses, the parts restored before it are put back as they were.
+    std::vector<std::vector<unsigned char>> before;
+    for (const auto& part : m_parts) before.push_back(part->buoyancy->saveState());
+    std::size_t done = 0;
+    try {
+        for (; done < m_parts.size(); ++done) m_parts[done]->buoyancy->restoreState(parts[done]);
+    } catch (...) {
+        for (std::size_t i = 0; i < done; ++i) m_parts[i]->buoyancy->restoreState(before[i]);
+        throw;
+    }
+    m_lastSubstep = lastSubstep;
 }

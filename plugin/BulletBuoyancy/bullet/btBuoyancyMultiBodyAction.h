@@ -60,6 +60,17 @@ public:
     /// Submerged volume of every part together in the last substep, m³.
     double getSubmergedVolume() const;
 
+    /// The state this action carries from substep to substep, as bytes (btBuoyancyState.h): each part's
+    /// (btBuoyancyImmediate::saveState). Restore the world (btBuoyancyWorld::restoreState) and the multibody's own
+    /// state (base pose and velocity, joint positions and velocities) too, and the next substeps repeat bit for bit.
+    std::vector<unsigned char> saveState() const;
+    /// Restore what saveState wrote into an action built the same way (same multibody layout and settings). Read and
+    /// checked whole; a blob either applies completely or not at all.
+    /// @throws std::invalid_argument naming the problem (wrong kind, truncated, checksum, another multibody's parts)
+    void restoreState(const unsigned char* data, std::size_t size);
+    /// restoreState of a whole vector. @throws std::invalid_argument (see above)
+    void restoreState(const std::vector<unsigned char>& blob) { restoreState(blob.data(), blob.size()); }
+
 private:
     struct Part;
     btMultiBody* m_multiBody;

@@ -44,6 +44,8 @@ const char* btBuoyancyStateKindName(btBuoyancyStateKind kind) {
     case btBuoyancyStateKind::TimeVaryingMass: return "btTimeVaryingMassAction";
     case btBuoyancyStateKind::BuoyantBody: return "btBuoyantBody";
     case btBuoyancyStateKind::InteractiveWater: return "btInteractiveWaterCoupler";
+    case btBuoyancyStateKind::Immediate: return "btBuoyancyImmediate";
+    case btBuoyancyStateKind::MultiBodyAction: return "btBuoyancyMultiBodyAction";
     }
     return "unknown";
 }
@@ -64,6 +66,11 @@ void btBuoyancyStateWriter::f32(float v) {
 void btBuoyancyStateWriter::f64Vector(const std::vector<double>& v) {
     u64(v.size());
     f64s(v.data(), v.size());
+}
+
+void btBuoyancyStateWriter::blob(const std::vector<unsigned char>& bytes) {
+    u64(bytes.size());
+    m_payload.insert(m_payload.end(), bytes.begin(), bytes.end());
 }
 
 std::vector<unsigned char> btBuoyancyStateWriter::bytes() const {
@@ -170,6 +177,14 @@ std::vector<double> btBuoyancyStateReader::f64Vector(const char* field) {
     if (n > remaining() / 8) fail(std::string("'") + field + "' announces " + std::to_string(n) + " numbers, the payload holds fewer");
     std::vector<double> v(static_cast<std::size_t>(n));
     f64s(v.data(), v.size(), field);
+    return v;
+}
+
+std::vector<unsigned char> btBuoyancyStateReader::blob(const char* field) {
+    const std::uint64_t n = u64(field);
+    if (n > remaining()) fail(std::string("'") + field + "' announces " + std::to_string(n) + " bytes, the payload holds fewer");
+    std::vector<unsigned char> v(m_data + m_pos, m_data + m_pos + static_cast<std::size_t>(n));
+    m_pos += static_cast<std::size_t>(n);
     return v;
 }
 

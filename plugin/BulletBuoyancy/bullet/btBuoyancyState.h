@@ -2,7 +2,8 @@
 /// @file btBuoyancyState.h
 /// Save and restore (docs/integration.md "Save and restore"): the bytes that btBuoyancyWorld::saveState,
 /// btBuoyancyAction::saveState, btFloodingAction::saveState, btTimeVaryingMassAction::saveState,
-/// btBuoyantBody::saveState and btInteractiveWaterCoupler::saveState write, and their restoreState functions read back,
+/// btBuoyantBody::saveState, btInteractiveWaterCoupler::saveState, btBuoyancyImmediate::saveState and
+/// btBuoyancyMultiBodyAction::saveState write, and their restoreState functions read back,
 /// so that a replay or a rollback goes on bit-identically.
 ///
 /// Format (every integer little-endian, every floating-point number its IEEE bits, little-endian):
@@ -30,6 +31,8 @@ enum class btBuoyancyStateKind : std::uint8_t {
     TimeVaryingMass = 4, ///< btTimeVaryingMassAction::saveState
     BuoyantBody = 5,     ///< btBuoyantBody::saveState
     InteractiveWater = 6, ///< btInteractiveWaterCoupler::saveState (the grid and the footprints)
+    Immediate = 7,       ///< btBuoyancyImmediate::saveState (its context's and its evaluation's blobs inside)
+    MultiBodyAction = 8, ///< btBuoyancyMultiBodyAction::saveState (each part's btBuoyancyImmediate blob inside)
 };
 
 /// Name of a kind for messages, e.g. "btBuoyancyAction"; "unknown" for other values.
@@ -63,6 +66,8 @@ public:
     }
     /// Append a size (u64) then the doubles.
     void f64Vector(const std::vector<double>& v);
+    /// Append a size (u64) then the bytes of another blob (a state made of others' states).
+    void blob(const std::vector<unsigned char>& bytes);
     /// The complete blob: header, payload, checksum.
     std::vector<unsigned char> bytes() const;
 
@@ -96,6 +101,9 @@ public:
     }
     /// A size (at most what the rest of the payload can hold) then that many doubles.
     std::vector<double> f64Vector(const char* field);
+    /// A size (at most what the rest of the payload can hold) then that many bytes: a blob written by
+    /// btBuoyancyStateWriter::blob (checked by whoever reads it).
+    std::vector<unsigned char> blob(const char* field);
     /// A count read earlier must equal the object's: throws "<what>: <field> is <saved> in the blob, <expected> here".
     void expectCount(std::uint64_t saved, std::uint64_t expected, const char* field) const;
     /// Throw "<what>: <message>".
