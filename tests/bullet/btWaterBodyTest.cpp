@@ -501,3 +501,47 @@ TEST_CASE("water bodies: point queries answer with the polygon lake or the mesh 
     CHECK(lake.distanceTo(btWaterFrame(), Eigen::Vector3d(3.0, 0.0, 3.0)) == Approx(1.0));
     CHECK(lake.distanceTo(btWaterFrame(), Eigen::Vector3d(1.0, 4.0, 1.0)) == Approx(3.0));
 }
+
+TEST_CASE("water bodies in a Z-up world: a footprint is in the water frame's horizontal axes", "[bullet][waters]") {
+    // Gravity −z: the water frame's x is the world's +x and its z the world's −y (btWaterFrame), heights along +z. The
+    // L-shaped lake's footprint is given in those axes, so its notch [2, 4] × [2, 4] (water x, z) is the world's
+    // x in [2, 4], y in [−4, −2]. The box of the Y-up test, 2 m along x and y and 1 m tall along z, over the notch's
+    // corner: the same 1.75 m² of its footprint inside, D = 0.7 m deep.
+    WaterBodiesWorld w(btVector3(0, 0, btScalar(-kGravity)));
+    const double level = 0.2, D = level + 0.5;
+    const btFlatWaterSurface water(level);
+    w.buoyancy.addWaterBody(polygonWater("lake", &water, 1000.0, kLake, -3.0, 1.0));
+    const auto at = [&](double x, double y, double z) {
+        return w.buoyancy.queryWater(btVector3(btScalar(x), btScalar(y), btScalar(z))).waterBody;
+    };
+    CHECK(at(3.0, -1.0, -0.5) == 0);   // water (3, −0.5, 1): the x arm
+    CHECK(at(3.0, -3.0, -0.5) == -1);  // water (3, −0.5, 3): the notch
+    CHECK(at(3.0, 1.0, -0.5) == -1);   // water z = −1: outside
+    const std::size_t i = w.addCrate(500.0, 2.5, -2.5, 0.0, Eigen::Vector3d(2.0, 2.0, 1.0));
+    w.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));
+    const btBuoyancyResult& r = w.actions[i]->getLastResult();
+    CHECK(double(r.submergedVolume) == Approx(1.75 * D).epsilon(1e-3));
+    CHECK(double(r.buoyancyForce.z()) == Approx(1000.0 * kGravity * 1.75 * D).epsilon(1e-3));
+}
+
+TEST_CASE("water bodies: a box over the edge of a lake of many footprint triangles gets its half inside",
+          "[bullet][waters]") {
+    // The rectangle [0, 10] × [0, 4] with 19 more corners along its edge z = 0 (cut into about 20 thin triangles, of
+    // which the action keeps only those its bounding sphere reaches). A 1 m cube centred on the edge x = 10: half of
+    // it inside, V = 0.5 × D, ρ g D²/2 on its face x = 9.5.
+    Footprint shore;
+    for (int k = 0; k <= 20; ++k) shore.push_back({0.5 * k, 0.0});
+    shore.push_back({10.0, 4.0});
+    shore.push_back({0.0, 4.0});
+    const double level = 0.2, D = level + 0.5;
+    const btFlatWaterSurface water(level);
+    WaterBodiesWorld w;
+    w.buoyancy.addWaterBody(polygonWater("lake", &water, 1000.0, shore, -3.0, 1.0));
+    CHECK(w.buoyancy.getWaterBodies()[0].footprintTriangles.size() >= 20);
+    const std::size_t i = w.addCrate(500.0, 10.0, 0.0, 2.0, Eigen::Vector3d(1.0, 1.0, 1.0));
+    w.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));
+    const btBuoyancyResult& r = w.actions[i]->getLastResult();
+    CHECK(double(r.submergedVolume) == Approx(0.5 * D).epsilon(1e-3));
+    CHECK(double(r.buoyancyForce.y()) == Approx(1000.0 * kGravity * 0.5 * D).epsilon(1e-3));
+    CHECK(double(r.buoyancyForce.x()) == Approx(1000.0 * kGravity * D * D / 2).epsilon(2e-3));
+}

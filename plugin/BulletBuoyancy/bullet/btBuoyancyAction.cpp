@@ -639,7 +639,19 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
             for (std::size_t i = 0; i < waterBodies.size(); ++i) {
                 if (!(waterBodies[i].distanceTo(frame, centreWorld) <= br)) continue;
                 const bool first = m_regionsReached.empty();
+                const std::size_t before = m_regionsReached.size();
                 appendRegionsOf(waterBodies[i]);
+                // Only the pieces the sphere may reach (a long shore has many footprint triangles): a piece one of
+                // whose planes has the whole sphere outside is left out.
+                std::size_t kept = before;
+                for (std::size_t k = before; k < m_regionsReached.size(); ++k) {
+                    const buoyancy::WaterRegion& piece = m_regionsReached[k];
+                    bool reaches = true;
+                    for (int p = 0; p < piece.planeCount && reaches; ++p)
+                        reaches = piece.normal[p].dot(bc) - br <= piece.offset[p];
+                    if (reaches) m_regionsReached[kept++] = piece;
+                }
+                m_regionsReached.resize(kept, buoyancy::WaterRegion());
                 double l = 0, u = 0;
                 waterBodies[i].surface->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, l, u);
                 lo = first ? l : std::min(lo, l);
