@@ -151,6 +151,12 @@ TEST_CASE("scene waters: polygon and mesh regions are read and reach the world",
     CHECK(bodyAt(7, -1, 1) == 2);
     CHECK(bodyAt(10.2, -0.5, 0.2) == 3);
     CHECK(bodyAt(11.5, -0.5, 1.5) == -1);  // beside the tetrahedron's slanted face
+    // The scene file runs (the crate straddles the lake's corner at the origin).
+    {
+        std::ofstream f(dir / "lakes.json");
+        f << "{\"waters\": " << waters << ", " << kBody << "}";
+    }
+    CHECK(buoyancy::cli::runSceneCommand((dir / "lakes.json").string(), (dir / "out").string(), 0.25) == 0);
     std::filesystem::remove_all(dir);
 }
 
