@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -473,6 +474,11 @@ TEST_CASE("water bodies: bad footprints and meshes are refused with a message na
     btWaterBodyInfo inward = prismTank("inward", &water, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0.0, 1.0);
     for (std::size_t t = 0; t < inward.meshTriangles.size(); t += 3) std::swap(inward.meshTriangles[t + 1], inward.meshTriangles[t + 2]);
     CHECK_THROWS_WITH(world.addWaterBody(inward), Contains("face inward"));
+    // A 40-sided tank: 42 distinct planes, more than a region clips by.
+    Footprint round;
+    for (int k = 0; k < 40; ++k) round.push_back({2.0 * std::cos(0.05 * M_PI * k), 2.0 * std::sin(0.05 * M_PI * k)});
+    CHECK_THROWS_WITH(world.addWaterBody(prismTank("round", &water, round, 0.0, 1.0)),
+                      Contains("the mesh has 42 distinct face planes, at most 32 are supported"));
     CHECK(world.getWaterBodies().empty());
 }
 

@@ -560,15 +560,37 @@ bool btWaterBody::overlaps(const btWaterBody& other, const btWaterFrame& frame) 
     if (kind == btWaterRegionKind::Box && other.kind == btWaterRegionKind::Box)
         // Boxes overlap when their open interiors meet on every axis (touching faces are accepted).
         return (regionMin.array() < other.regionMax.array()).all() && (other.regionMin.array() < regionMax.array()).all();
-    // Quick rejection by the world bounding boxes (touching ones are apart).
-    if (!((regionMin.array() < other.regionMax.array()).all() && (other.regionMin.array() < regionMax.array()).all()))
-        return false;
-    const double tolerance =
-        1e-9 * (1.0 + std::max((regionMax - regionMin).norm(), (other.regionMax - other.regionMin).norm()));
+    // The pieces in the frame in use (a footprint is in water coordinates: its world bounding box may be older).
     const std::vector<ConvexPiece> mine = convexPieces(*this, frame), theirs = convexPieces(other, frame);
-    for (const ConvexPiece& a : mine)
-        for (const ConvexPiece& b : theirs)
-            if (piecesOverlap(a, b, tolerance)) return true;
+    const auto bounds = [](const ConvexPiece& piece, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
+        lo = hi = piece.vertices.front();
+        for (const Eigen::Vector3d& v : piece.vertices) {
+            lo = lo.cwiseMin(v);
+            hi = hi.cwiseMax(v);
+        }
+    };
+    std::vector<Eigen::Vector3d> lo(theirs.size()), hi(theirs.size());
+    double size = 0;
+    for (std::size_t j = 0; j < theirs.size(); ++j) {
+        bounds(theirs[j], lo[j], hi[j]);
+        size = std::max(size, (hi[j] - lo[j]).norm());
+    }
+    for (const ConvexPiece& a : mine) {
+        Eigen::Vector3d alo, ahi;
+        bounds(a, alo, ahi);
+        size = std::max(size, (ahi - alo).norm());
+    }
+    const double tolerance = 1e-9 * (1.0 + size);
+    for (const ConvexPiece& a : mine) {
+        Eigen::Vector3d alo, ahi;
+        bounds(a, alo, ahi);
+        for (std::size_t j = 0; j < theirs.size(); ++j) {
+            // Pieces whose bounding boxes are apart or only touch are apart.
+            if (!((alo.array() < hi[j].array() - tolerance).all() && (lo[j].array() < ahi.array() - tolerance).all()))
+                continue;
+            if (piecesOverlap(a, theirs[j], tolerance)) return true;
+        }
+    }
     return false;
 }
 

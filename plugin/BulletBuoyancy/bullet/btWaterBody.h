@@ -57,18 +57,18 @@ struct btWaterBodyInfo {
     /// Polygon: the footprint's corners in order (either winding), each (x, z) in the water frame's horizontal axes,
     /// m; at least 3, finite, a simple polygon (no edge crossing or touching a non-adjacent edge, no repeated corner,
     /// non-zero area). Non-convex footprints are allowed.
-    std::vector<std::array<double, 2>> footprint;
+    std::vector<std::array<double, 2>> footprint = {};
     /// Polygon: height of the region's bottom along the water frame's up, m (water-frame y), finite.
     double bottom = 0.0;
     /// Polygon: height of the region's top along the water frame's up, m, finite and > bottom (at or above the
     /// surface's highest point).
     double top = 0.0;
     /// Mesh: the tank's vertices, world, m (finite).
-    std::vector<btVector3> meshVertices;
+    std::vector<btVector3> meshVertices = {};
     /// Mesh: three indices into meshVertices per triangle, counter-clockwise seen from outside (outward normals); the
     /// mesh must be closed (every edge shared by exactly two triangles, in opposite directions) and convex, with at
     /// most 32 distinct face planes (coplanar triangles share one).
-    std::vector<int> meshTriangles;
+    std::vector<int> meshTriangles = {};
 };
 
 /// A water body as the world holds it (the region in double precision).
@@ -77,7 +77,8 @@ struct btWaterBody {
     const btWaterSurface* surface = nullptr;   ///< not owned
     double fluidDensity = 1000.0;              ///< kg/m³
     btWaterRegionKind kind = btWaterRegionKind::Box;  ///< the region's shape
-    /// Box: lower box corner, world, m (Polygon, Mesh: lower corner of the region's world bounding box).
+    /// Box: lower box corner, world, m (Polygon, Mesh: lower corner of the region's world bounding box; a polygon's
+    /// in the water frame given to setRegion).
     Eigen::Vector3d regionMin = Eigen::Vector3d::Zero();
     /// Box: upper box corner, world, m (Polygon, Mesh: upper corner of the region's world bounding box).
     Eigen::Vector3d regionMax = Eigen::Vector3d::Zero();
