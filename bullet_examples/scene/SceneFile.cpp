@@ -492,12 +492,56 @@ std::string cornerText(const Eigen::Vector3d& v) {
     return buf;
 }
 
-/// The "waters" array: each entry a water object (the keys of "water" but "frame") with a required
-/// "region": {"box": {"min": [x, y, z], "max": [x, y, z]}}. Messages name the entry's keys ("waters[1].height").
-/// Regions must not overlap (touching is allowed): the message names both entries.
+/// The vertices and triangles of an OBJ file ("v x y z" and "f a b c ..." lines, faces of more than 3 corners fanned,
+/// "a/t/n" and negative indices accepted); errors name `key` and the file's line.
+void readObjMesh(const Reader& r, const std::string& file, const std::string& key, std::vector<Eigen::Vector3d>& vertices,
+                 std::vector<int>& triangles) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) r.fail(key, "no such file: " + file);
+    std::ifstream in(file);
+    if (!in) r.fail(key, "cannot read " + file);
+    std::string line;
+    int lineNo = 0;
+    while (std::getline(in, line)) {
+        ++lineNo;
+        std::istringstream ls(line);
+        std::string tag;
+        if (!(ls >> tag)) continue;
+        const std::string where = file + " line " + std::to_string(lineNo);
+        if (tag == "v") {
+            double x = 0, y = 0, z = 0;
+            if (!(ls >> x >> y >> z) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+                r.fail(key, where + ": expected \"v x y z\" with finite numbers");
+            vertices.emplace_back(x, y, z);
+        } else if (tag == "f") {
+            std::vector<int> corners;
+            std::string item;
+            while (ls >> item) {
+                char* endp = nullptr;
+                const long v = std::strtol(item.c_str(), &endp, 10);
+                if (endp == item.c_str() || v == 0) r.fail(key, where + ": bad face corner \"" + item + "\"");
+                const long index = v > 0 ? v - 1 : long(vertices.size()) + v;
+                if (index < 0 || index >= long(vertices.size()))
+                    r.fail(key, where + ": face corner " + std::to_string(v) + " out of range");
+                corners.push_back(int(index));
+            }
+            if (corners.size() < 3) r.fail(key, where + ": a face needs at least 3 corners");
+            for (std::size_t k = 1; k + 1 < corners.size(); ++k)
+                triangles.insert(triangles.end(), {corners[0], corners[k], corners[k + 1]});
+        }
+    }
+    if (vertices.empty() || triangles.empty()) r.fail(key, file + ": no vertices or faces");
+}
+
+/// The "waters" array: each entry a water object (the keys of "water" but "frame") with a required "region": a box
+/// {"box": {"min": [x, y, z], "max": [x, y, z]}}, a footprint {"polygon": [[x, z], ...], "bottom": h0, "top": h1}, or
+/// a convex tank {"mesh": "tank.obj"} or {"vertices": [[x, y, z], ...], "triangles": [[i, j, k], ...]}. Messages
+/// name the entry's keys ("waters[1].height"). Regions must not overlap (touching is allowed): the message names
+/// both entries.
 void readWaters(const Reader& r, const json& j, Scene& s, const std::string& directory) {
     if (!j.is_array()) r.fail("waters", "expected an array of water objects");
     if (j.empty()) r.fail("waters", "empty: give at least one water object (or use \"water\")");
+    std::vector<btWaterBody> checkedRegions;  // the entries' regions as the world will hold them
     for (std::size_t i = 0; i < j.size(); ++i) {
         const std::string key = "waters[" + std::to_string(i) + "]";
         const json& w = j[i];
@@ -526,30 +570,120 @@ void readWaters(const Reader& r, const json& j, Scene& s, const std::string& dir
         body.density = one.waterDensity;
         const json& region = w["region"];
         r.requireObject(region, key + ".region");
-        r.allowKeys(region, key + ".region", {"box"});
-        if (!region.contains("box")) r.fail(key + ".region.box", "missing ({\"min\": [x, y, z], \"max\": [x, y, z]})");
-        const json& box = region["box"];
-        r.requireObject(box, key + ".region.box");
-        r.allowKeys(box, key + ".region.box", {"min", "max"});
-        if (!box.contains("min")) r.fail(key + ".region.box.min", "missing (the lower corner [x, y, z], m)");
-        if (!box.contains("max")) r.fail(key + ".region.box.max", "missing (the upper corner [x, y, z], m)");
-        body.regionMin = r.vec3(box["min"], key + ".region.box.min", -kBig, kBig);
-        body.regionMax = r.vec3(box["max"], key + ".region.box.max", -kBig, kBig);
-        static const char* const axes[3] = {"x", "y", "z"};
-        for (int k = 0; k < 3; ++k)
-            if (!(body.regionMin[k] < body.regionMax[k]))
-                r.fail(key + ".region.box.max", "must be greater than min on every axis (" + std::string(axes[k]) +
-                                                    ": max " + cornerText(body.regionMax) + " <= min " +
-                                                    cornerText(body.regionMin) + ")");
+        r.allowKeys(region, key + ".region", {"box", "polygon", "bottom", "top", "mesh", "vertices", "triangles"});
+        const int kinds = int(region.contains("box")) + int(region.contains("polygon")) +
+                          int(region.contains("mesh") || region.contains("vertices") || region.contains("triangles"));
+        if (kinds != 1)
+            r.fail(key + ".region", std::string(kinds == 0 ? "missing its shape" : "more than one shape") +
+                                        ": give one of \"box\", \"polygon\" (with \"bottom\" and \"top\"), \"mesh\" "
+                                        "(an OBJ file) or \"vertices\" with \"triangles\"");
+        if (!region.contains("polygon"))
+            for (const char* k : {"bottom", "top"})
+                if (region.contains(k)) r.fail(key + ".region." + k, "only with \"polygon\"");
+        if (region.contains("box")) {
+            const json& box = region["box"];
+            r.requireObject(box, key + ".region.box");
+            r.allowKeys(box, key + ".region.box", {"min", "max"});
+            if (!box.contains("min")) r.fail(key + ".region.box.min", "missing (the lower corner [x, y, z], m)");
+            if (!box.contains("max")) r.fail(key + ".region.box.max", "missing (the upper corner [x, y, z], m)");
+            body.regionMin = r.vec3(box["min"], key + ".region.box.min", -kBig, kBig);
+            body.regionMax = r.vec3(box["max"], key + ".region.box.max", -kBig, kBig);
+            static const char* const axes[3] = {"x", "y", "z"};
+            for (int k = 0; k < 3; ++k)
+                if (!(body.regionMin[k] < body.regionMax[k]))
+                    r.fail(key + ".region.box.max", "must be greater than min on every axis (" + std::string(axes[k]) +
+                                                        ": max " + cornerText(body.regionMax) + " <= min " +
+                                                        cornerText(body.regionMin) + ")");
+        } else if (region.contains("polygon")) {
+            body.regionKind = btWaterRegionKind::Polygon;
+            const json& poly = region["polygon"];
+            const std::string pk = key + ".region.polygon";
+            if (!poly.is_array()) r.fail(pk, "expected an array of [x, z] points (the water frame's horizontal axes, m)");
+            for (std::size_t c = 0; c < poly.size(); ++c) {
+                const std::string ck = pk + "[" + std::to_string(c) + "]";
+                if (!poly[c].is_array() || poly[c].size() != 2) r.fail(ck, "expected an array of 2 numbers [x, z]");
+                body.footprint.push_back({r.number(poly[c][0], ck + "[0]", -kBig, kBig),
+                                          r.number(poly[c][1], ck + "[1]", -kBig, kBig)});
+            }
+            if (!region.contains("bottom")) r.fail(key + ".region.bottom", "missing (the bottom's height along up, m)");
+            if (!region.contains("top")) r.fail(key + ".region.top", "missing (the top's height along up, m)");
+            body.bottom = r.number(region["bottom"], key + ".region.bottom", -kBig, kBig);
+            body.top = r.number(region["top"], key + ".region.top", -kBig, kBig);
+        } else {
+            body.regionKind = btWaterRegionKind::Mesh;
+            if (region.contains("mesh")) {
+                if (region.contains("vertices") || region.contains("triangles"))
+                    r.fail(key + ".region.mesh", "give either \"mesh\" (a file) or \"vertices\" with \"triangles\"");
+                std::filesystem::path p(r.string(region["mesh"], key + ".region.mesh"));
+                if (p.is_relative()) p = std::filesystem::path(directory) / p;
+                body.meshFile = p.string();
+                readObjMesh(r, body.meshFile, key + ".region.mesh", body.meshVertices, body.meshTriangles);
+            } else {
+                if (!region.contains("vertices")) r.fail(key + ".region.vertices", "missing (an array of [x, y, z], m)");
+                if (!region.contains("triangles"))
+                    r.fail(key + ".region.triangles", "missing (an array of [i, j, k], outward)");
+                const json& vs = region["vertices"];
+                const json& ts = region["triangles"];
+                if (!vs.is_array()) r.fail(key + ".region.vertices", "expected an array of [x, y, z]");
+                if (!ts.is_array()) r.fail(key + ".region.triangles", "expected an array of [i, j, k]");
+                for (std::size_t v = 0; v < vs.size(); ++v)
+                    body.meshVertices.push_back(
+                        r.vec3(vs[v], key + ".region.vertices[" + std::to_string(v) + "]", -kBig, kBig));
+                for (std::size_t t = 0; t < ts.size(); ++t) {
+                    const std::string tk = key + ".region.triangles[" + std::to_string(t) + "]";
+                    if (!ts[t].is_array() || ts[t].size() != 3) r.fail(tk, "expected an array of 3 vertex indices");
+                    for (int k = 0; k < 3; ++k)
+                        body.meshTriangles.push_back(r.integer(ts[t][k], tk + "[" + std::to_string(k) + "]", 0,
+                                                               std::max<long long>(0, (long long)vs.size() - 1)));
+                }
+            }
+        }
+        // The region checked as the world will (a simple footprint, a closed convex mesh), and its bounding box.
+        btWaterBodyInfo info;
+        info.regionKind = body.regionKind;
+        info.regionMin = btVector3(btScalar(body.regionMin.x()), btScalar(body.regionMin.y()), btScalar(body.regionMin.z()));
+        info.regionMax = btVector3(btScalar(body.regionMax.x()), btScalar(body.regionMax.y()), btScalar(body.regionMax.z()));
+        info.footprint = body.footprint;
+        info.bottom = body.bottom;
+        info.top = body.top;
+        for (const Eigen::Vector3d& v : body.meshVertices)
+            info.meshVertices.push_back(btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())));
+        info.meshTriangles = body.meshTriangles;
+        btWaterBody checked;
+        checked.name = key;
+        const std::string regionKey = key + ".region." + (region.contains("box") ? "box" : region.contains("polygon") ? "polygon"
+                                                          : region.contains("mesh") ? "mesh" : "triangles");
+        try {
+            checked.setRegion(info, s.waterFrame, "");
+        } catch (const std::invalid_argument& e) {
+            const std::string what = e.what();
+            if (what.compare(0, 4, "top:") == 0) r.fail(key + ".region.top", what.substr(5));
+            if (what.compare(0, 7, "bottom:") == 0) r.fail(key + ".region.bottom", what.substr(8));
+            r.fail(regionKey, what);
+        }
+        if (body.regionKind != btWaterRegionKind::Box) {
+            body.regionMin = checked.regionMin;
+            body.regionMax = checked.regionMax;
+        }
         for (std::size_t o = 0; o < s.waters.size(); ++o) {
             const SceneWaterBody& other = s.waters[o];
-            if ((body.regionMin.array() < other.regionMax.array()).all() &&
-                (other.regionMin.array() < body.regionMax.array()).all())
-                r.fail(key + ".region", "the box " + cornerText(body.regionMin) + " to " + cornerText(body.regionMax) +
-                                            " overlaps waters[" + std::to_string(o) + "].region " +
-                                            cornerText(other.regionMin) + " to " + cornerText(other.regionMax) +
-                                            ": the regions of water bodies must not overlap");
+            if (body.regionKind == btWaterRegionKind::Box && other.regionKind == btWaterRegionKind::Box) {
+                if ((body.regionMin.array() < other.regionMax.array()).all() &&
+                    (other.regionMin.array() < body.regionMax.array()).all())
+                    r.fail(key + ".region", "the box " + cornerText(body.regionMin) + " to " + cornerText(body.regionMax) +
+                                                " overlaps waters[" + std::to_string(o) + "].region " +
+                                                cornerText(other.regionMin) + " to " + cornerText(other.regionMax) +
+                                                ": the regions of water bodies must not overlap");
+            } else if (checked.overlaps(checkedRegions[o], s.waterFrame)) {
+                const auto named = [](const btWaterBody& b) {
+                    return (b.kind == btWaterRegionKind::Box ? "box " : "") + b.regionText();
+                };
+                r.fail(key + ".region", "the " + named(checked) + " overlaps waters[" + std::to_string(o) +
+                                            "].region (" + named(checkedRegions[o]) +
+                                            "): the regions of water bodies must not overlap");
+            }
         }
+        checkedRegions.push_back(std::move(checked));
         s.waters.push_back(std::move(body));
     }
 }

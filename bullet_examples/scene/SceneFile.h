@@ -7,6 +7,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 #include <BulletBuoyancy/bullet/btMarineHydrodynamics.h>
+#include <BulletBuoyancy/bullet/btWaterBody.h>
 #include <BulletBuoyancy/bullet/btWaterFrame.h>
 #include <BulletBuoyancy/water/btFftOceanSurface.h>
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
@@ -14,6 +15,7 @@
 #include "scene/SceneGraph.h"
 
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -84,8 +86,22 @@ struct SceneWaterBody {
     SceneWater water;                 ///< surface type and parameters, as the "water" object (no "frame")
     double height = 0.0;              ///< level, m
     double density = 1000.0;          ///< ρ_w, kg/m³
-    Eigen::Vector3d regionMin = Eigen::Vector3d::Zero(); ///< "region.box.min": lower corner, world, m
-    Eigen::Vector3d regionMax = Eigen::Vector3d::Zero(); ///< "region.box.max": upper corner, world, m (> min)
+    /// Which region: "region.box" (Box), "region.polygon" (Polygon) or "region.mesh" / "region.vertices" (Mesh).
+    btWaterRegionKind regionKind = btWaterRegionKind::Box;
+    /// Box: "region.box.min", lower corner, world, m (other kinds: the region's world bounding box).
+    Eigen::Vector3d regionMin = Eigen::Vector3d::Zero();
+    /// Box: "region.box.max", upper corner, world, m (> min).
+    Eigen::Vector3d regionMax = Eigen::Vector3d::Zero();
+    /// Polygon: "region.polygon", the footprint's corners [x, z] in the water frame's horizontal axes, m.
+    std::vector<std::array<double, 2>> footprint;
+    double bottom = 0.0;  ///< Polygon: "region.bottom", height along up, m
+    double top = 0.0;     ///< Polygon: "region.top", height along up, m (> bottom)
+    /// Mesh: "region.mesh" (an OBJ file, relative to the scene file; the path as resolved) or empty when given inline.
+    std::string meshFile;
+    /// Mesh: the vertices ("region.vertices", or the OBJ's), world, m.
+    std::vector<Eigen::Vector3d> meshVertices;
+    /// Mesh: three indices per triangle ("region.triangles", or the OBJ's faces fanned), outward.
+    std::vector<int> meshTriangles;
 };
 
 /// The "camera" block: the view of `buoyancy run --png` and of the scene browser. Fields left out are

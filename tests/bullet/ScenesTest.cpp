@@ -128,6 +128,28 @@ TEST_CASE("scene pool_and_lake.json: each crate floats in its own water body, th
     for (const Row& r : stone) CHECK(r.v[16] == 0.0);
 }
 
+TEST_CASE("scene lake_and_tank.json: a crate floats in the L-shaped lake and one in the tank, the stone in the notch falls",
+          "[bullet][scenes]") {
+    const auto rows = runScene("lake_and_tank.json");
+    // Boxes 1 × 0.5 × 1 of density 500: centre at level − ρ_b/ρ_w · 0.5 + 0.25. The lake: level 0, 1000 kg/m³ (an
+    // L-shaped footprint); the tank: level 1, 1025 kg/m³ (a triangular prism given as a mesh).
+    const auto& lake = rows.at("lake_crate");
+    const auto& tank = rows.at("tank_crate");
+    const double lakeCentre = 0.0 - 500.0 / 1000.0 * 0.5 + 0.25, tankCentre = 1.0 - 500.0 / 1025.0 * 0.5 + 0.25;
+    const auto [lakeY, lakeRange] = meanRange(lake, 8, lake.back().t - 2.0);
+    const auto [tankY, tankRange] = meanRange(tank, 8, tank.back().t - 2.0);
+    std::printf("lake_and_tank: lake crate %.5f (theory %.5f), tank crate %.5f (theory %.5f)\n", lakeY, lakeCentre, tankY,
+                tankCentre);
+    CHECK(lakeY == Approx(lakeCentre).margin(0.01));
+    CHECK(tankY == Approx(tankCentre).margin(0.01));
+    CHECK(lake.back().v[16] == Approx(250.0 / 1000.0).margin(0.01));  // V_sub = m / ρ_w, m³
+    CHECK(tank.back().v[16] == Approx(250.0 / 1025.0).margin(0.01));
+    // The notch of the L holds no water: the stone (radius 0.2 m) falls to the ground at -2, never wet.
+    const auto& stone = rows.at("stone");
+    CHECK(stone.back().v[8] == Approx(-2.0 + 0.2).margin(0.02));
+    for (const Row& r : stone) CHECK(r.v[16] == 0.0);
+}
+
 TEST_CASE("scene rivers_and_lakes.json: the river carries the boat at its current while the crates float still",
           "[bullet][scenes]") {
     const auto rows = runScene("rivers_and_lakes.json");

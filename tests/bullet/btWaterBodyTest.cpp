@@ -5,12 +5,16 @@
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
+#include <BulletBuoyancy/bullet/btWaterFrame.h>
+#include <BulletBuoyancy/integrals/Hydrostatics.h>
 #include <BulletBuoyancy/mesh/PrimitiveMeshes.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <btBulletDynamicsCommon.h>
 #include <catch2/catch.hpp>
 
+#include <array>
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -68,6 +72,67 @@ struct WaterBodiesWorld {
 btWaterBodyInfo boxWater(const char* name, const btWaterSurface* surface, double density, const btVector3& min,
                          const btVector3& max) {
     return btWaterBodyInfo{name, surface, density, min, max};  // the aggregate form docs/integration.md shows
+}
+
+using Footprint = std::vector<std::array<double, 2>>;
+
+btWaterBodyInfo polygonWater(const char* name, const btWaterSurface* surface, double density, const Footprint& footprint,
+                             double bottom, double top) {
+    btWaterBodyInfo info;
+    info.name = name;
+    info.surface = surface;
+    info.fluidDensity = density;
+    info.regionKind = btWaterRegionKind::Polygon;
+    info.footprint = footprint;
+    info.bottom = bottom;
+    info.top = top;
+    return info;
+}
+
+/// The L-shaped lake [0, 4] × [0, 2] ∪ [0, 2] × [0, 4] in (x, z): its notch is [2, 4] × [2, 4].
+const Footprint kLake = {{0, 0}, {4, 0}, {4, 2}, {2, 2}, {2, 4}, {0, 4}};
+
+/// A convex prism tank: the convex footprint `ring` (x, z, either order) from y0 to y1, as outward triangles.
+btWaterBodyInfo prismTank(const char* name, const btWaterSurface* surface, const Footprint& ring, double y0, double y1) {
+    btWaterBodyInfo info;
+    info.name = name;
+    info.surface = surface;
+    info.regionKind = btWaterRegionKind::Mesh;
+    const int n = int(ring.size());
+    for (const auto& p : ring) info.meshVertices.push_back(btVector3(btScalar(p[0]), btScalar(y0), btScalar(p[1])));
+    for (const auto& p : ring) info.meshVertices.push_back(btVector3(btScalar(p[0]), btScalar(y1), btScalar(p[1])));
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const btVector3& v : info.meshVertices) centre += Eigen::Vector3d(v.x(), v.y(), v.z()) / double(2 * n);
+    const auto add = [&](int a, int b, int c) {  // flipped to face away from the centre
+        const btVector3 &A = info.meshVertices[std::size_t(a)], &B = info.meshVertices[std::size_t(b)],
+                        &C = info.meshVertices[std::size_t(c)];
+        const btVector3 normal = (B - A).cross(C - A);
+        const btVector3 out = (A + B + C) / 3 - btVector3(btScalar(centre.x()), btScalar(centre.y()), btScalar(centre.z()));
+        if (normal.dot(out) > 0) info.meshTriangles.insert(info.meshTriangles.end(), {a, b, c});
+        else info.meshTriangles.insert(info.meshTriangles.end(), {a, c, b});
+    };
+    for (int k = 0; k < n; ++k) {
+        const int j = (k + 1) % n;
+        add(k, j, n + j);
+        add(k, n + j, n + k);
+        if (k > 0 && j > 0) {  // the floor and the lid, fanned from corner 0
+            add(0, k, j);
+            add(n, n + k, n + j);
+        }
+    }
+    return info;
+}
+
+/// A tank whose wall z = 2 runs from x = −2 to 2: the pentagon (−2, −2), (2, −2), (3, 0), (2, 2), (−2, 2).
+const Footprint kTankRing = {{-2, -2}, {2, -2}, {3, 0}, {2, 2}, {-2, 2}};
+
+/// regionHydrostatics of `mesh` at `pose` in the pieces of `body` (world = water frame).
+buoyancy::HydrostaticsResult inRegion(const btWaterBody& body, const buoyancy::TriangleMesh& mesh,
+                                      const Eigen::Isometry3d& pose) {
+    std::vector<buoyancy::WaterRegion> regions;
+    body.appendWaterRegions(btWaterFrame(), regions);
+    return buoyancy::regionHydrostatics(mesh, pose, regions.data(), regions.size(), 0.0, kGravity,
+                                        pose.translation());
 }
 
 }  // namespace
@@ -258,4 +323,231 @@ TEST_CASE("water bodies: a stone resting on a region's bottom keeps its buoyancy
     CHECK(double(r.buoyancyForce.y()) == Approx(1000.0 * kGravity * size.prod()).epsilon(1e-4));
     CHECK(w.actions[stone]->getSubmergedFraction() == Approx(1.0).epsilon(1e-6));
     w.world.removeRigidBody(&bed);
+}
+
+TEST_CASE("water bodies: a box across the inner corner of an L-shaped lake gets the volume and force of its parts inside",
+          "[bullet][waters]") {
+    // The lake's footprint is non-convex (cut into triangles, the body clipped against each triangle's prism and the
+    // parts summed). A 2 × 1 × 2 m box centred at (2.5, 0, 2.5) over the notch's corner (2, 2): by hand, the parts of
+    // its footprint [1.5, 3.5]² inside the L are [1.5, 3.5] × [1.5, 2] (1 m², centroid (2.5, 1.75)) and
+    // [1.5, 2] × [2, 3.5] (0.75 m², centroid (1.75, 2.75)); each a prism of depth D below the level 0.2 m.
+    const double level = 0.2, rho = 1000.0, D = level + 0.5;
+    const btFlatWaterSurface water(level);
+    btBuoyancyWorld world(nullptr, rho, kGravity);
+    REQUIRE(world.addWaterBody(polygonWater("lake", &water, rho, kLake, -3.0, 1.0)) == 0);
+    const btWaterBody& lake = world.getWaterBodies()[0];
+    CHECK(lake.footprintTriangles.size() == 4);
+    const buoyancy::TriangleMesh box = buoyancy::makeBoxMesh(2.0, 1.0, 2.0);
+    const Eigen::Isometry3d pose(Eigen::Translation3d(2.5, 0.0, 2.5));
+    const auto h = inRegion(lake, box, pose);
+    const double A1 = 1.0, A2 = 0.75, V = (A1 + A2) * D;
+    CHECK(h.submerged_volume == Approx(V).epsilon(1e-12));
+    CHECK(h.centre_of_buoyancy.x() == Approx((A1 * 2.5 + A2 * 1.75) / (A1 + A2)).epsilon(1e-12));
+    CHECK(h.centre_of_buoyancy.z() == Approx((A1 * 1.75 + A2 * 2.75) / (A1 + A2)).epsilon(1e-12));
+    CHECK(h.centre_of_buoyancy.y() == Approx(-0.5 + D / 2).epsilon(1e-12));
+    // The bottom's parts inside pressed by ρ g D; horizontally ρ g D²/2 per metre of the end faces' parts inside:
+    // x = 1.5 over z in [1.5, 3.5] (2 m, pushed to +x) against x = 3.5 over z in [1.5, 2] (0.5 m, pushed to −x), and
+    // likewise along z.
+    CHECK(h.force.y() == Approx(rho * kGravity * D * (A1 + A2)).epsilon(1e-12));
+    CHECK(h.force.x() == Approx(rho * kGravity * D * D / 2 * (2.0 - 0.5)).epsilon(1e-12));
+    CHECK(h.force.z() == Approx(rho * kGravity * D * D / 2 * (2.0 - 0.5)).epsilon(1e-12));
+
+    // The same box through a world's step: the action sees it straddle the lake's shore and clips it likewise.
+    WaterBodiesWorld w;
+    w.buoyancy.addWaterBody(polygonWater("lake", &water, rho, kLake, -3.0, 1.0));
+    const std::size_t i = w.addCrate(500.0, 2.5, 0.0, 2.5, Eigen::Vector3d(2.0, 1.0, 2.0));
+    w.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));
+    const btBuoyancyResult& r = w.actions[i]->getLastResult();
+    // The 0.2 mm fall of the substep changes the volume by 1.75 m² × 0.2 mm (5e-4 of it).
+    CHECK(double(r.submergedVolume) == Approx(V).epsilon(1e-3));
+    CHECK(double(r.buoyancyForce.y()) == Approx(rho * kGravity * V).epsilon(1e-3));
+}
+
+TEST_CASE("water bodies: a box half inside a convex mesh tank gets the pressure of its half inside", "[bullet][waters]") {
+    // A 1 m cube centred on the tank's wall z = 2, level 0.25 m: the half z < 2 is inside, D = 0.75 m deep. By hand:
+    // V = 0.5 × 1 × D, the bottom's half pressed by ρ g D, the face z = 1.5 pushed to +z by ρ g D²/2 × 1 m (the
+    // wall's cut is not a face of the body: nothing pushes back).
+    const double level = 0.25, rho = 1025.0, D = level + 0.5;
+    const btFlatWaterSurface water(level);
+    btBuoyancyWorld world(nullptr, rho, kGravity);
+    btWaterBodyInfo info = prismTank("tank", &water, kTankRing, -3.0, 1.0);
+    info.fluidDensity = rho;
+    REQUIRE(world.addWaterBody(info) == 0);
+    const btWaterBody& tank = world.getWaterBodies()[0];
+    CHECK(tank.meshNormals.size() == 7);  // 5 walls, the floor and the lid
+    const buoyancy::TriangleMesh cube = buoyancy::makeBoxMesh(1.0, 1.0, 1.0);
+    const auto h = inRegion(tank, cube, Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 2.0)));
+    CHECK(h.submerged_volume == Approx(0.5 * D).epsilon(1e-12));
+    CHECK(h.centre_of_buoyancy.z() == Approx(1.75).epsilon(1e-12));
+    CHECK(h.force.y() == Approx(rho * kGravity * D * 0.5).epsilon(1e-12));
+    CHECK(h.force.z() == Approx(rho * kGravity * D * D / 2).epsilon(1e-12));
+    CHECK(h.force.x() == Approx(0.0).margin(1e-9));
+    // Fully inside (the tank's walls reach no part of it): the whole cube's ρ g D × 1 m², as unbounded water gives.
+    const auto inside = inRegion(tank, cube, Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 0.0)));
+    CHECK(inside.submerged_volume == Approx(D).epsilon(1e-12));
+    CHECK(inside.force.y() == Approx(rho * kGravity * D).epsilon(1e-12));
+    CHECK(inside.force.z() == Approx(0.0).margin(1e-9));
+}
+
+TEST_CASE("water bodies: a body inside a polygon lake or a mesh tank gets what unbounded water gives", "[bullet][waters]") {
+    // One substep of a moving crate (pressure and drag) in unbounded water, in the L-shaped lake's arm (its bounding
+    // sphere within the lake's sides, across the lake's triangles) and in the tank: the same result.
+    const double level = 0.2;
+    const btFlatWaterSurface water(level);
+    const auto step = [](WaterBodiesWorld& w, double x, double z) {
+        const std::size_t i = w.addCrate(500.0, x, 0, z);
+        w.bodies[i]->getRigidBody()->setLinearVelocity(btVector3(0.3f, -0.2f, 0.7f));
+        w.bodies[i]->getRigidBody()->setAngularVelocity(btVector3(0.1f, 0.4f, -0.2f));
+        w.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));
+        return w.actions[i]->getLastResult();
+    };
+    WaterBodiesWorld unbounded;
+    unbounded.buoyancy.setWater(&water);
+    const btBuoyancyResult one = step(unbounded, 1.0, 1.0);
+    REQUIRE(one.dragForce.length() > 1.0);
+    WaterBodiesWorld lake;
+    lake.buoyancy.addWaterBody(polygonWater("lake", &water, 1000.0, kLake, -3.0, 1.0));
+    const btBuoyancyResult inLake = step(lake, 1.0, 1.0);
+    WaterBodiesWorld tank;
+    tank.buoyancy.addWaterBody(prismTank("tank", &water, kTankRing, -3.0, 1.0));
+    const btBuoyancyResult inTank = step(tank, 1.0, 1.0);
+    for (const btBuoyancyResult* r : {&inLake, &inTank}) {
+        CHECK((r->buoyancyForce - one.buoyancyForce).length() <= 1e-6 * one.buoyancyForce.length());
+        CHECK((r->buoyancyTorque - one.buoyancyTorque).length() <= 1e-6 * one.buoyancyForce.length());
+        CHECK((r->dragForce - one.dragForce).length() <= 1e-6 * one.dragForce.length());
+        CHECK(r->submergedVolume == Approx(one.submergedVolume).epsilon(1e-6));
+    }
+}
+
+TEST_CASE("water bodies: polygon and mesh regions that overlap are refused and ones that only touch are accepted",
+          "[bullet][waters]") {
+    const btFlatWaterSurface water(0.0);
+    btBuoyancyWorld world(nullptr, 1000.0, kGravity);
+    REQUIRE(world.addWaterBody(polygonWater("lake", &water, 1000.0, kLake, -3.0, 1.0)) == 0);
+    // The notch's square shares two edges with the lake; a triangle in the notch touches nothing (its bounding box
+    // meets the lake's: a bounding-box test would refuse it).
+    CHECK(world.addWaterBody(polygonWater("notch", &water, 1000.0, {{2, 2}, {4, 2}, {4, 3}}, -3.0, 1.0)) == 1);
+    CHECK(world.addWaterBody(polygonWater("corner", &water, 1000.0, {{3, 4}, {2, 4}, {4, 3}, {4, 4}}, -3.0, 1.0)) == 2);
+    // A box beside the lake sharing the face x = 4, and one below its bottom sharing the plane y = -3.
+    CHECK(world.addWaterBody(boxWater("pool", &water, 1000.0, btVector3(4, -3, 0), btVector3(6, 1, 2))) == 3);
+    CHECK(world.addWaterBody(boxWater("cellar", &water, 1000.0, btVector3(0, -5, 0), btVector3(4, -3, 2))) == 4);
+    // A tank sharing the face x = 0 with the lake.
+    Footprint west = {{-2, 0}, {0, 0}, {0, 4}, {-2, 4}};
+    CHECK(world.addWaterBody(prismTank("west tank", &water, west, -3.0, 1.0)) == 5);
+    // Overlaps: a square reaching 0.1 m into the lake's arm, a box into its corner, a tank into it.
+    try {
+        world.addWaterBody(polygonWater("pond", &water, 1000.0, {{1.9, 2.5}, {1.95, 3.5}, {1.99, 3.5}}, -3.0, 1.0));
+        FAIL("overlapping polygon accepted");
+    } catch (const std::invalid_argument& e) {
+        CHECK_THAT(e.what(), Contains("\"pond\"") && Contains("\"lake\"") && Contains("overlap") && Contains("polygon"));
+    }
+    CHECK_THROWS_WITH(world.addWaterBody(boxWater("box", &water, 1000.0, btVector3(3.5, -1, 1.5), btVector3(5, 0, 2.5))),
+                      Contains("\"box\"") && Contains("\"lake\"") && Contains("overlap"));
+    Footprint east = {{-1, 1}, {0.5, 1}, {0.5, 2}, {-1, 2}};
+    CHECK_THROWS_WITH(world.addWaterBody(prismTank("east tank", &water, east, -1.0, 0.0)),
+                      Contains("\"east tank\"") && Contains("overlap"));
+    CHECK(world.getWaterBodies().size() == 6);
+}
+
+TEST_CASE("water bodies: bad footprints and meshes are refused with a message naming the problem", "[bullet][waters]") {
+    const btFlatWaterSurface water(0.0);
+    btBuoyancyWorld world(nullptr, 1000.0, kGravity);
+    CHECK_THROWS_WITH(world.addWaterBody(polygonWater("bow", &water, 1000.0, {{0, 0}, {2, 2}, {2, 0}, {0, 2}}, -1, 1)),
+                      Contains("\"bow\"") && Contains("footprint: not a simple polygon: edge 0") && Contains("meets edge 2"));
+    CHECK_THROWS_WITH(world.addWaterBody(polygonWater("two", &water, 1000.0, {{0, 0}, {2, 2}}, -1, 1)),
+                      Contains("footprint: a polygon needs at least 3 corners (got 2)"));
+    CHECK_THROWS_WITH(world.addWaterBody(polygonWater("line", &water, 1000.0, {{0, 0}, {1, 1}, {3, 3}}, -1, 1)),
+                      Contains("footprint: not a simple polygon"));  // collinear: the closing edge folds back
+    CHECK_THROWS_WITH(world.addWaterBody(polygonWater("twice", &water, 1000.0, {{0, 0}, {1, 0}, {1, 1}, {1, 0}}, -1, 1)),
+                      Contains("corners 1 and 3 are the same point"));
+    CHECK_THROWS_WITH(world.addWaterBody(polygonWater("back", &water, 1000.0, {{0, 0}, {2, 0}, {1, 0}, {1, 1}}, -1, 1)),
+                      Contains("fold back"));
+    CHECK_THROWS_WITH(world.addWaterBody(polygonWater("flat", &water, 1000.0, kLake, 1, 1)),
+                      Contains("\"flat\"") && Contains("top: must be greater than bottom"));
+    // A cube tank with a corner pushed in: a dent, not convex.
+    btWaterBodyInfo dent = prismTank("dent", &water, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0.0, 1.0);
+    dent.meshVertices[6] = btVector3(0.5f, 0.5f, 0.5f);
+    CHECK_THROWS_WITH(world.addWaterBody(dent), Contains("region mesh of water body 'dent' is not convex: vertex"));
+    btWaterBodyInfo open = prismTank("open", &water, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0.0, 1.0);
+    open.meshTriangles.resize(open.meshTriangles.size() - 3);
+    CHECK_THROWS_WITH(world.addWaterBody(open), Contains("\"open\"") && Contains("not closed"));
+    btWaterBodyInfo inward = prismTank("inward", &water, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0.0, 1.0);
+    for (std::size_t t = 0; t < inward.meshTriangles.size(); t += 3) std::swap(inward.meshTriangles[t + 1], inward.meshTriangles[t + 2]);
+    CHECK_THROWS_WITH(world.addWaterBody(inward), Contains("face inward"));
+    // A 40-sided tank: 42 distinct planes, more than a region clips by.
+    Footprint round;
+    for (int k = 0; k < 40; ++k) round.push_back({2.0 * std::cos(0.05 * M_PI * k), 2.0 * std::sin(0.05 * M_PI * k)});
+    CHECK_THROWS_WITH(world.addWaterBody(prismTank("round", &water, round, 0.0, 1.0)),
+                      Contains("the mesh has 42 distinct face planes, at most 32 are supported"));
+    CHECK(world.getWaterBodies().empty());
+}
+
+TEST_CASE("water bodies: point queries answer with the polygon lake or the mesh tank the point is in", "[bullet][waters]") {
+    const btFlatWaterSurface lakeWater(0.0), tankWater(0.5);
+    btBuoyancyWorld world(nullptr, 1000.0, kGravity);
+    world.addWaterBody(polygonWater("lake", &lakeWater, 1000.0, kLake, -3.0, 1.0));
+    world.addWaterBody(prismTank("tank", &tankWater, {{5, 0}, {7, 0}, {6, 2}}, -1.0, 1.0));
+    const auto at = [&](double x, double y, double z) { return world.queryWater(btVector3(btScalar(x), btScalar(y), btScalar(z))); };
+    const btWaterQueryResult arm = at(3.0, -1.0, 1.0);  // in the lake's x arm
+    CHECK(arm.waterBody == 0);
+    CHECK(arm.inWater);
+    CHECK(double(arm.depth) == Approx(1.0));
+    CHECK(at(1.0, 5.0, 3.0).waterBody == 0);   // above its top, within its sides: the lake's column
+    CHECK(at(3.0, -1.0, 3.0).waterBody == -1);  // in the notch: no water
+    CHECK_FALSE(at(3.0, -1.0, 3.0).hasWater);
+    CHECK(at(1.0, -4.0, 1.0).waterBody == -1);  // below the lake's bottom
+    const btWaterQueryResult inTank = at(6.0, 0.0, 0.5);
+    CHECK(inTank.waterBody == 1);
+    CHECK(double(inTank.depth) == Approx(0.5));
+    CHECK(at(5.2, 0.0, 1.5).waterBody == -1);  // beside the tank's slanted wall
+    // The sphere tests the action uses: within the lake's sides, reaching the notch or not.
+    const btWaterBody& lake = world.getWaterBodies()[0];
+    CHECK(lake.sphereWithinSides(btWaterFrame(), Eigen::Vector3d(1.0, 0.0, 1.0), 0.9));
+    CHECK_FALSE(lake.sphereWithinSides(btWaterFrame(), Eigen::Vector3d(1.5, 0.0, 1.5), 0.8));  // the notch's corner 0.71 m away
+    CHECK(lake.distanceTo(btWaterFrame(), Eigen::Vector3d(3.0, 0.0, 3.0)) == Approx(1.0));
+    CHECK(lake.distanceTo(btWaterFrame(), Eigen::Vector3d(1.0, 4.0, 1.0)) == Approx(3.0));
+}
+
+TEST_CASE("water bodies in a Z-up world: a footprint is in the water frame's horizontal axes", "[bullet][waters]") {
+    // Gravity −z: the water frame's x is the world's +x and its z the world's −y (btWaterFrame), heights along +z. The
+    // L-shaped lake's footprint is given in those axes, so its notch [2, 4] × [2, 4] (water x, z) is the world's
+    // x in [2, 4], y in [−4, −2]. The box of the Y-up test, 2 m along x and y and 1 m tall along z, over the notch's
+    // corner: the same 1.75 m² of its footprint inside, D = 0.7 m deep.
+    WaterBodiesWorld w(btVector3(0, 0, btScalar(-kGravity)));
+    const double level = 0.2, D = level + 0.5;
+    const btFlatWaterSurface water(level);
+    w.buoyancy.addWaterBody(polygonWater("lake", &water, 1000.0, kLake, -3.0, 1.0));
+    const auto at = [&](double x, double y, double z) {
+        return w.buoyancy.queryWater(btVector3(btScalar(x), btScalar(y), btScalar(z))).waterBody;
+    };
+    CHECK(at(3.0, -1.0, -0.5) == 0);   // water (3, −0.5, 1): the x arm
+    CHECK(at(3.0, -3.0, -0.5) == -1);  // water (3, −0.5, 3): the notch
+    CHECK(at(3.0, 1.0, -0.5) == -1);   // water z = −1: outside
+    const std::size_t i = w.addCrate(500.0, 2.5, -2.5, 0.0, Eigen::Vector3d(2.0, 2.0, 1.0));
+    w.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));
+    const btBuoyancyResult& r = w.actions[i]->getLastResult();
+    CHECK(double(r.submergedVolume) == Approx(1.75 * D).epsilon(1e-3));
+    CHECK(double(r.buoyancyForce.z()) == Approx(1000.0 * kGravity * 1.75 * D).epsilon(1e-3));
+}
+
+TEST_CASE("water bodies: a box over the edge of a lake of many footprint triangles gets its half inside",
+          "[bullet][waters]") {
+    // The rectangle [0, 10] × [0, 4] with 19 more corners along its edge z = 0 (cut into about 20 thin triangles, of
+    // which the action keeps only those its bounding sphere reaches). A 1 m cube centred on the edge x = 10: half of
+    // it inside, V = 0.5 × D, ρ g D²/2 on its face x = 9.5.
+    Footprint shore;
+    for (int k = 0; k <= 20; ++k) shore.push_back({0.5 * k, 0.0});
+    shore.push_back({10.0, 4.0});
+    shore.push_back({0.0, 4.0});
+    const double level = 0.2, D = level + 0.5;
+    const btFlatWaterSurface water(level);
+    WaterBodiesWorld w;
+    w.buoyancy.addWaterBody(polygonWater("lake", &water, 1000.0, shore, -3.0, 1.0));
+    CHECK(w.buoyancy.getWaterBodies()[0].footprintTriangles.size() >= 20);
+    const std::size_t i = w.addCrate(500.0, 10.0, 0.0, 2.0, Eigen::Vector3d(1.0, 1.0, 1.0));
+    w.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));
+    const btBuoyancyResult& r = w.actions[i]->getLastResult();
+    CHECK(double(r.submergedVolume) == Approx(0.5 * D).epsilon(1e-3));
+    CHECK(double(r.buoyancyForce.y()) == Approx(1000.0 * kGravity * 0.5 * D).epsilon(1e-3));
+    CHECK(double(r.buoyancyForce.x()) == Approx(1000.0 * kGravity * D * D / 2).epsilon(2e-3));
 }

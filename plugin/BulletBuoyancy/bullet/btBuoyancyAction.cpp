@@ -237,47 +237,23 @@ buoyancy::HydrostaticsResult btBuoyancyAction::submergedClosedForm(const Eigen::
 bool btBuoyancyAction::reachesOnlyWaterBody(std::size_t index, const Eigen::Vector3d& centre, double radius) const {
     const std::vector<btWaterBody>& bodies = m_world->getWaterBodies();
     const btWaterBody& body = bodies[index];
-    // Inside the box's sides: neither its top (the face whose outward normal is nearest the water frame's up: the
-    // water fills the box up to the surface, whatever is above it) nor its bottom (the bed: a body resting on it, or
-    // pressed a little into it by the contact solver, has water under it, as regionOf says).
-    const Eigen::Vector3d up = m_world->getWaterFrame().up();
-    int topAxis = 0;
-    for (int k = 1; k < 3; ++k)
-        if (std::abs(up[k]) > std::abs(up[topAxis])) topAxis = k;
-    for (int k = 0; k < 3; ++k) {
-        if (k == topAxis) continue;
-        if (!(centre[k] - radius >= body.regionMin[k])) return false;
-        if (!(centre[k] + radius <= body.regionMax[k])) return false;
-    }
+    const btWaterFrame& frame = m_world->getWaterFrame();
+    // Inside the region's sides: neither its top (the water fills the region up to the surface, whatever is above
+    // it) nor its bottom (the bed: a body resting on it, or pressed a little into it by the contact solver, has water
+    // under it, as appendRegionsOf says).
+    if (!body.sphereWithinSides(frame, centre, radius)) return false;
     for (std::size_t i = 0; i < bodies.size(); ++i)
-        if (i != index && bodies[i].distanceTo(centre) <= radius) return false;
+        if (i != index && bodies[i].distanceTo(frame, centre) <= radius) return false;
     return true;
 }
 
-buoyancy::WaterRegion btBuoyancyAction::regionOf(const btWaterBody& body) const {
-    // The box's sides, as half-spaces of the water frame: n · p ≤ n · (a point of the face), with the world's normal
-    // and point mapped into the frame. Not its top (the water ends at its surface) nor its bottom: below the bed the
-    // pressure goes on as if the water did (design.md 2.9). The bed itself is the collision world's business; a body
-    // resting on it, or pressed a little into it, keeps water under it instead of being sucked down by the weight of
-    // the water column above it (with the bottom as a wall, its bottom face had no pressure at all).
-    const btWaterFrame& frame = m_world->getWaterFrame();
-    const Eigen::Vector3d up = frame.up();
-    int topAxis = 0;
-    for (int k = 1; k < 3; ++k)
-        if (std::abs(up[k]) > std::abs(up[topAxis])) topAxis = k;
-    buoyancy::WaterRegion region;
-    region.water = body.surface;
-    region.fluidDensity = body.fluidDensity;
-    for (int k = 0; k < 3; ++k)
-        for (const double side : {-1.0, 1.0}) {
-            if (k == topAxis) continue;  // the top and the bottom
-            const Eigen::Vector3d normal = side * Eigen::Vector3d::Unit(k);
-            const Eigen::Vector3d onFace = side > 0 ? body.regionMax : body.regionMin;
-            const int i = region.planeCount++;
-            region.normal[i] = frame.toWaterVector(normal);
-            region.offset[i] = region.normal[i].dot(frame.toWaterPoint(onFace));
-        }
-    return region;
+void btBuoyancyAction::appendRegionsOf(const btWaterBody& body) {
+    // The region's convex pieces but their tops and bottoms, as half-spaces of the water frame (btWaterBody::
+    // appendWaterRegions). Not the top (the water ends at its surface) nor the bottom: below the bed the pressure goes
+    // on as if the water did (design.md 2.9). The bed itself is the collision world's business; a body resting on
+    // it, or pressed a little into it, keeps water under it instead of being sucked down by the weight of the water
+    // column above it (with the bottom as a wall, its bottom face had no pressure at all).
+    body.appendWaterRegions(m_world->getWaterFrame(), m_regionsReached);
 }
 
 btTransform btBuoyancyAction::getMeshInComFrame() const {
@@ -402,7 +378,7 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     // the per-sample drag lives in geometry/SampleFormulas.h, shared with the OpenCL kernels;
     // the CPU sums it several clusters per instruction (integrals/DragKernel.h, the same formulas lane by lane).
     // A body straddling water bodies (design.md 2.9): one pass per region reached, with its water and density; each
-    // cluster is wet only in the first region whose box holds its centre (dry in the others).
+    // cluster is wet only in the first region piece that holds its centre (dry in the others).
     const std::size_t passes = m_straddling ? m_regionsReached.size() : 1;
     if (m_straddling) std::fill(m_dassigned.begin(), m_dassigned.end(), std::uint8_t(0));
     double sum[BB_DRAG_TERMS] = {};
@@ -676,12 +652,25 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
             // The water's bounds over the footprint: the widest of the regions reached.
             m_regionsReached.clear();
             for (std::size_t i = 0; i < waterBodies.size(); ++i) {
-                if (!(waterBodies[i].distanceTo(centreWorld) <= br)) continue;
-                m_regionsReached.push_back(regionOf(waterBodies[i]));
+                if (!(waterBodies[i].distanceTo(frame, centreWorld) <= br)) continue;
+                const bool first = m_regionsReached.empty();
+                const std::size_t before = m_regionsReached.size();
+                appendRegionsOf(waterBodies[i]);
+                // Only the pieces the sphere may reach (a long shore has many footprint triangles): a piece one of
+                // whose planes has the whole sphere outside is left out.
+                std::size_t kept = before;
+                for (std::size_t k = before; k < m_regionsReached.size(); ++k) {
+                    const buoyancy::WaterRegion& piece = m_regionsReached[k];
+                    bool reaches = true;
+                    for (int p = 0; p < piece.planeCount && reaches; ++p)
+                        reaches = piece.normal[p].dot(bc) - br <= piece.offset[p];
+                    if (reaches) m_regionsReached[kept++] = piece;
+                }
+                m_regionsReached.resize(kept, buoyancy::WaterRegion());
                 double l = 0, u = 0;
                 waterBodies[i].surface->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, l, u);
-                lo = m_regionsReached.size() == 1 ? l : std::min(lo, l);
-                hi = m_regionsReached.size() == 1 ? u : std::max(hi, u);
+                lo = first ? l : std::min(lo, l);
+                hi = first ? u : std::max(hi, u);
             }
         }
         if (waterBody != m_activeWaterBody) {

@@ -296,11 +296,12 @@ private:
     bool m_straddling = false;
     /// Per drag cluster: already wet in an earlier region's pass of this substep (straddling drag).
     std::vector<std::uint8_t> m_dassigned;
-    /// True when the sphere (`centre`, world, m; `radius`, m) is inside water body `index`'s box but its top and
-    /// reaches no other water body's box.
+    /// True when the sphere (`centre`, world, m; `radius`, m) is within water body `index`'s region's sides and
+    /// reaches no other water body's region.
     bool reachesOnlyWaterBody(std::size_t index, const Eigen::Vector3d& centre, double radius) const;
-    /// The box of `body` but its top as half-spaces of the world's water frame, with its water and density.
-    buoyancy::WaterRegion regionOf(const btWaterBody& body) const;
+    /// Append the convex pieces of `body`'s region but their tops and bottoms to m_regionsReached, as half-spaces of
+    /// the world's water frame, with its water and density.
+    void appendRegionsOf(const btWaterBody& body);
     ///@}
     std::shared_ptr<btBuoyancyDeformable> m_deformable;  ///< re-baked samples of a deformable body
     /// True until the first hydrostatic kick after creation or sleep: Bullet has already applied gravity for

@@ -20,17 +20,8 @@ namespace {
 /// Largest angle between the world's gravity and the water frame's down direction still taken as "down", rad.
 constexpr double kGravityAngleTolerance = 1e-6;
 
-/// "[x, y, z]" of a box corner, m.
-std::string cornerText(const Eigen::Vector3d& v) {
-    char buf[128];
-    std::snprintf(buf, sizeof buf, "[%.6g, %.6g, %.6g]", v.x(), v.y(), v.z());
-    return buf;
-}
-
-/// "water body \"pool\" (region [..] to [..])".
-std::string waterBodyText(const btWaterBody& b) {
-    return "water body \"" + b.name + "\" (region " + cornerText(b.regionMin) + " to " + cornerText(b.regionMax) + ")";
-}
+/// "water body \"pool\" (region box [..] to [..])".
+std::string waterBodyText(const btWaterBody& b) { return "water body \"" + b.name + "\" (region " + b.regionText() + ")"; }
 
 std::string angleText(double radians) {
     char buf[64];
@@ -157,8 +148,6 @@ int btBuoyancyWorld::addWaterBody(const btWaterBodyInfo& info) {
     body.name = info.name.empty() ? "water body " + std::to_string(m_waterBodies.size()) : info.name;
     body.surface = info.surface;
     body.fluidDensity = info.fluidDensity;
-    body.regionMin = Eigen::Vector3d(double(info.regionMin.x()), double(info.regionMin.y()), double(info.regionMin.z()));
-    body.regionMax = Eigen::Vector3d(double(info.regionMax.x()), double(info.regionMax.y()), double(info.regionMax.z()));
     const std::string named = who + "\"" + body.name + "\": ";
     if (m_water)
         throw std::invalid_argument(named + "the world has an unbounded water: an unbounded water and water bodies "
@@ -168,21 +157,10 @@ int btBuoyancyWorld::addWaterBody(const btWaterBodyInfo& info) {
     if (!std::isfinite(body.fluidDensity) || !(body.fluidDensity > 0))
         throw std::invalid_argument(named + "fluidDensity: must be a finite number > 0 (got " +
                                     std::to_string(body.fluidDensity) + ")");
-    static const char* const axes[3] = {"x", "y", "z"};
-    for (int k = 0; k < 3; ++k) {
-        if (!std::isfinite(body.regionMin[k]))
-            throw std::invalid_argument(named + "regionMin." + axes[k] + ": must be finite");
-        if (!std::isfinite(body.regionMax[k]))
-            throw std::invalid_argument(named + "regionMax." + axes[k] + ": must be finite");
-        if (!(body.regionMin[k] < body.regionMax[k]))
-            throw std::invalid_argument(named + "regionMax." + axes[k] + ": must be greater than regionMin." + axes[k] +
-                                        " (" + cornerText(body.regionMin) + " to " + cornerText(body.regionMax) + ")");
-    }
+    body.setRegion(info, m_frame, named);
     for (const btWaterBody& other : m_waterBodies) {
-        // Boxes overlap when their open interiors meet on every axis (touching faces are accepted).
-        const bool overlap = (body.regionMin.array() < other.regionMax.array()).all() &&
-                             (other.regionMin.array() < body.regionMax.array()).all();
-        if (overlap)
+        // Regions overlap when their interiors meet (regions sharing only a face, an edge or a corner are accepted).
+        if (body.overlaps(other, m_frame))
             throw std::invalid_argument(who + waterBodyText(body) + " overlaps " + waterBodyText(other) +
                                         ": the regions of water bodies must not overlap");
     }
@@ -207,8 +185,8 @@ int btBuoyancyWorld::findWaterBody(const Eigen::Vector3d& centre, double radius,
     double bestDistance = 0;
     for (std::size_t i = 0; i < m_waterBodies.size(); ++i) {
         const btWaterBody& b = m_waterBodies[i];
-        if (!(b.distanceTo(centre) <= radius)) continue;  // the sphere does not reach the box
-        const double d = b.distanceTo(point);
+        if (!(b.distanceTo(m_frame, centre) <= radius)) continue;  // the sphere does not reach the region
+        const double d = b.distanceTo(m_frame, point);
         if (best < 0 || d < bestDistance) {
             best = int(i);
             bestDistance = d;
@@ -361,39 +339,11 @@ void btBuoyancyWorld::dispatchEvents(btBuoyancyAction& action, const btBuoyancyE
     }
 }
 
-namespace {
-/// The axis of the box face nearest the water frame's up (its top: the water is not cut off there).
-int topAxisOf(const Eigen::Vector3d& up) {
-    int top = 0;
-    for (int k = 1; k < 3; ++k)
-        if (std::abs(up[k]) > std::abs(up[top])) top = k;
-    return top;
-}
-/// True when `p` is within the sides of `body`'s box and not below its bottom (the face opposite its top), with a
-/// tolerance `slack`, m.
-bool inColumn(const btWaterBody& body, const Eigen::Vector3d& p, int top, double upSign, double slack) {
-    for (int k = 0; k < 3; ++k) {
-        const bool skipMax = k == top && upSign > 0, skipMin = k == top && upSign < 0;
-        if (!skipMin && !(p[k] >= body.regionMin[k] - slack)) return false;
-        if (!skipMax && !(p[k] <= body.regionMax[k] + slack)) return false;
-    }
-    return true;
-}
-/// True when `p` is within the sides of `body`'s box (every face but its top and bottom), with a tolerance `slack`, m.
-bool withinSides(const btWaterBody& body, const Eigen::Vector3d& p, int top, double slack) {
-    for (int k = 0; k < 3; ++k)
-        if (k != top && !(p[k] >= body.regionMin[k] - slack && p[k] <= body.regionMax[k] + slack)) return false;
-    return true;
-}
-}  // namespace
-
 int btBuoyancyWorld::waterBodyAt(const Eigen::Vector3d& point) const {
     for (std::size_t i = 0; i < m_waterBodies.size(); ++i)
-        if (m_waterBodies[i].distanceTo(point) == 0.0) return int(i);
-    const Eigen::Vector3d up = m_frame.up();
-    const int top = topAxisOf(up);
+        if (m_waterBodies[i].distanceTo(m_frame, point) == 0.0) return int(i);
     for (std::size_t i = 0; i < m_waterBodies.size(); ++i)
-        if (inColumn(m_waterBodies[i], point, top, up[top], 0.0)) return int(i);
+        if (m_waterBodies[i].inColumn(m_frame, point, 0.0)) return int(i);
     return -1;
 }
 
@@ -456,10 +406,9 @@ void btBuoyancyWorld::debugDrawWater(btIDebugDraw* drawer, const btVector3& cent
     std::vector<double> xs(std::size_t(m) * m), zs(xs.size()), hs(xs.size());
     std::vector<btVector3> points(xs.size());
     std::vector<std::uint8_t> drawn(xs.size());
-    const Eigen::Vector3d up = m_frame.up();
-    const int top = topAxisOf(up);
     // One surface over the water-frame rectangle [x0, x1] × [z0, z1]; a water body's points outside its region's
-    // sides (a frame whose axes are not the box's) are left out with the segments that end there.
+    // sides (a frame whose axes are not the box's, a footprint that is not a rectangle) are left out with the segments
+    // that end there.
     const auto drawGrid = [&](const btWaterSurface& surface, double x0, double x1, double z0, double z1,
                               const btWaterBody* body) {
         for (int i = 0; i < m; ++i)
@@ -473,7 +422,7 @@ void btBuoyancyWorld::debugDrawWater(btIDebugDraw* drawer, const btVector3& cent
         for (std::size_t k = 0; k < xs.size(); ++k) {
             const Eigen::Vector3d w = m_frame.toWorldPoint(Eigen::Vector3d(xs[k], hs[k], zs[k]));
             points[k] = btVector3(btScalar(w.x()), btScalar(w.y()), btScalar(w.z()));
-            drawn[k] = std::isfinite(hs[k]) && (!body || withinSides(*body, w, top, slack));
+            drawn[k] = std::isfinite(hs[k]) && (!body || body->withinSides(m_frame, w, slack));
         }
         for (int i = 0; i < m; ++i)
             for (int j = 0; j < m; ++j) {
@@ -491,18 +440,9 @@ void btBuoyancyWorld::debugDrawWater(btIDebugDraw* drawer, const btVector3& cent
         return;
     }
     for (const btWaterBody& body : m_waterBodies) {
-        // The footprint: the water-frame x, z extent of the region's corners.
+        // The footprint: the water-frame x, z extent of the region.
         double x0 = 0, x1 = 0, z0 = 0, z1 = 0;
-        for (int corner = 0; corner < 8; ++corner) {
-            const Eigen::Vector3d p((corner & 1) ? body.regionMax.x() : body.regionMin.x(),
-                                    (corner & 2) ? body.regionMax.y() : body.regionMin.y(),
-                                    (corner & 4) ? body.regionMax.z() : body.regionMin.z());
-            const Eigen::Vector3d q = m_frame.toWaterPoint(p);
-            x0 = corner == 0 ? q.x() : std::min(x0, q.x());
-            x1 = corner == 0 ? q.x() : std::max(x1, q.x());
-            z0 = corner == 0 ? q.z() : std::min(z0, q.z());
-            z1 = corner == 0 ? q.z() : std::max(z1, q.z());
-        }
+        body.footprintBounds(m_frame, x0, x1, z0, z1);
         drawGrid(*body.surface, x0, x1, z0, z1, &body);
     }
 }

@@ -87,16 +87,19 @@ public:
     double getFluidDensity() const { return m_fluidDensity; }
 
     ///@name Water bodies (btWaterBody.h, design.md 2.9): several bounded waters instead of the unbounded one
-    /// Add a bounded water body: a surface inside an axis-aligned box of the world, with its own density. A body takes
+    /// Add a bounded water body: a surface inside a region (an axis-aligned box of the world, a footprint polygon
+    /// extruded along up, or a closed convex mesh: btWaterRegionKind), with its own density. A body takes
     /// its buoyancy and drag from the water bodies its bounding sphere reaches (none: no buoyancy, no drag); a body
     /// straddling a region's side or bottom, or two regions, takes each part of its wetted surface from the water of
     /// the region it is in (btBuoyancyAction, design.md 2.9). Add water bodies between steps.
     /// @return the index of the new water body in getWaterBodies()
     /// @throws std::invalid_argument naming the problem, the world unchanged: a null surface, a non-positive or
     ///         non-finite density, a non-finite corner or one whose min is not below its max on an axis (the message
-    ///         names regionMin/regionMax and the axis), a region overlapping another water body's (the message names
-    ///         both bodies and their boxes; boxes that only touch are accepted), or a world with an unbounded water
-    ///         (construct it with water = nullptr, or setWater(nullptr) first)
+    ///         names regionMin/regionMax and the axis), a degenerate or self-intersecting footprint or bottom >= top
+    ///         (the message names footprint, bottom or top), an open, inward or non-convex region mesh, a region
+    ///         overlapping another water body's (the message names both bodies and their regions; regions that only
+    ///         touch are accepted: an exact separating-axis test between their convex pieces), or a world with an
+    ///         unbounded water (construct it with water = nullptr, or setWater(nullptr) first)
     int addWaterBody(const btWaterBodyInfo& info);
     /// The water bodies, in the order added (empty: the unbounded water of getWater() applies).
     const std::vector<btWaterBody>& getWaterBodies() const { return m_waterBodies; }
@@ -104,7 +107,7 @@ public:
     void removeAllWaterBodies();
     /// True when some water body's surface changes over time (bodies near it are kept awake).
     bool isAnyWaterBodyTimeVarying() const { return m_anyWaterBodyTimeVarying; }
-    /// The water body nearest `point` among those whose box the sphere (`centre`, `radius`) reaches, or −1 when the
+    /// The water body nearest `point` among those whose region the sphere (`centre`, `radius`) reaches, or −1 when the
     /// sphere reaches none; ties go to the lower index. Points, world, m; radius, m, ≥ 0. O(number of water bodies).
     int findWaterBody(const Eigen::Vector3d& centre, double radius, const Eigen::Vector3d& point) const;
     ///@}

@@ -150,12 +150,12 @@ HydrostaticsResult vertexHydrostatics(const VertexShares& shares, const Eigen::I
 /// One water region of regionHydrostatics: the water of `water` (density `fluidDensity`) inside the convex set
 /// {p : normal[k] · p ≤ offset[k], k < planeCount} (in the coordinates the pose and the surface use: the water frame).
 struct WaterRegion {
-    static constexpr int kMaxPlanes = 6;          ///< a box's faces
+    static constexpr int kMaxPlanes = 32;         ///< a box's sides, a footprint triangle's, a convex tank's walls
     const btWaterSurface* water = nullptr;        ///< not owned
     double fluidDensity = 1000.0;                 ///< ρ, kg/m³
     int planeCount = 0;                           ///< number of half-spaces bounding the region
     Eigen::Vector3d normal[kMaxPlanes];           ///< outward unit normals
-    double offset[kMaxPlanes] = {0, 0, 0, 0, 0, 0}; ///< the region is normal · p ≤ offset, m
+    double offset[kMaxPlanes] = {};               ///< the region is normal · p ≤ offset, m
 };
 
 /// The exact-mesh method for a body in several water regions (design.md 2.9): every triangle of the posed mesh is cut
