@@ -6,6 +6,10 @@
 #include "scene/SceneFile.h"
 #include "scene/SceneWorld.h"
 
+#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyEvents.h>
+#include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,12 +18,13 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace buoyancy::cli {
 
 void addRunCommand(CLI::App& app, RunOptions& options) {
-    CLI::App* run = app.add_subcommand("run", "Run a scene file headless and write DIR/trajectory.csv");
+    CLI::App* run = app.add_subcommand("run", "Run a scene file headless and write DIR/trajectory.csv and DIR/events.csv");
     run->add_option("scene", options.scene, "Scene JSON file (docs/scene-format.md)")->required();
     run->add_option("--out", options.out, "Output folder (created when missing)")->required();
     run->add_option("--duration", options.duration, "Override the scene's duration, s")->check(CLI::NonNegativeNumber);
@@ -156,6 +161,35 @@ void printSummary(const Scene& scene, const std::vector<BodySummary>& summary, d
     spread("final height (along up)", "m", [](const BodySummary& b) { return b.height; });
 }
 
+/// Writes each water event to events.csv as it happens: t,substep,body,event,water_body,submerged_fraction.
+class EventCsvWriter : public btBuoyancyEventListener {
+public:
+    EventCsvWriter(std::FILE* file, const Scene& scene, const SceneWorld& world) : m_file(file) {
+        for (std::size_t i = 0; i < world.actions.size(); ++i)
+            if (world.actions[i]) m_names.emplace_back(world.actions[i].get(), scene.bodies[i].name);
+        for (std::size_t i = 0; i < scene.waters.size(); ++i) m_waters.push_back("waters[" + std::to_string(i) + "]");
+    }
+    void onEnterWater(const btBuoyancyEvent& e) override { write(e, "enter_water"); }
+    void onLeaveWater(const btBuoyancyEvent& e) override { write(e, "leave_water"); }
+    void onFullySubmerged(const btBuoyancyEvent& e) override { write(e, "fully_submerged"); }
+    void onSurfaced(const btBuoyancyEvent& e) override { write(e, "surfaced"); }
+
+private:
+    void write(const btBuoyancyEvent& e, const char* type) {
+        const char* body = "?";
+        for (const auto& [action, name] : m_names)
+            if (action == e.action) body = name.c_str();
+        const char* water = e.waterBody >= 0 && std::size_t(e.waterBody) < m_waters.size() ? m_waters[e.waterBody].c_str()
+                                                                                        : "water";
+        std::fprintf(m_file, "%s,%llu,%s,%s,%s,%s\n", shortestDecimal(e.time).c_str(),
+                     static_cast<unsigned long long>(e.substep), body, type, water,
+                     shortestDecimal(e.submergedFraction).c_str());
+    }
+    std::FILE* m_file;
+    std::vector<std::pair<const btBuoyancyAction*, std::string>> m_names;
+    std::vector<std::string> m_waters;
+};
+
 }  // namespace
 
 int runScene(const RunOptions& options) {
@@ -187,6 +221,19 @@ int runScene(const RunOptions& options) {
                "fbx,fby,fbz,fdx,fdy,fdz,cbx,cby,cbz\n",
                f.get());
 
+    // The water events (hysteresis: the scene's "events"), one row each as they happen.
+    const std::string eventsPath = (std::filesystem::path(options.out) / "events.csv").string();
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> ef(std::fopen(eventsPath.c_str(), "w"), &std::fclose);
+    if (!ef) throw UsageError("--out: cannot write " + eventsPath);
+    std::fputs("t,substep,body,event,water_body,submerged_fraction\n", ef.get());
+    EventCsvWriter events(ef.get(), scene, w);
+    w.buoyancy->addEventListener(&events);
+    struct RemoveListener {
+        btBuoyancyWorld& world;
+        btBuoyancyEventListener* listener;
+        ~RemoveListener() { world.removeEventListener(listener); }
+    } removeListener{*w.buoyancy, &events};
+
     const int n = scene.substepsPerFrame;
     const double frameTime = scene.dt * n;
     const long long frames = static_cast<long long>(std::ceil(duration / frameTime - 1e-9));
@@ -212,6 +259,7 @@ int runScene(const RunOptions& options) {
     }
     progress.finish();
     if (std::fflush(f.get()) != 0) throw UsageError("--out: error writing " + csvPath);
+    if (std::fflush(ef.get()) != 0) throw UsageError("--out: error writing " + eventsPath);
     if (!options.quiet) {
         printSummary(scene, summary, tLast);
         std::printf("trajectory: %s\n", csvPath.c_str());

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -639,16 +640,7 @@ void readWaters(const Reader& r, const json& j, Scene& s, const std::string& dir
             }
         }
         // The region checked as the world will (a simple footprint, a closed convex mesh), and its bounding box.
-        btWaterBodyInfo info;
-        info.regionKind = body.regionKind;
-        info.regionMin = btVector3(btScalar(body.regionMin.x()), btScalar(body.regionMin.y()), btScalar(body.regionMin.z()));
-        info.regionMax = btVector3(btScalar(body.regionMax.x()), btScalar(body.regionMax.y()), btScalar(body.regionMax.z()));
-        info.footprint = body.footprint;
-        info.bottom = body.bottom;
-        info.top = body.top;
-        for (const Eigen::Vector3d& v : body.meshVertices)
-            info.meshVertices.push_back(btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())));
-        info.meshTriangles = body.meshTriangles;
+        const btWaterBodyInfo info = body.regionInfo();
         btWaterBody checked;
         checked.name = key;
         const std::string regionKey = key + ".region." + (region.contains("box") ? "box" : region.contains("polygon") ? "polygon"
@@ -700,7 +692,7 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
     }
     r.requireObject(j, "");
     r.allowKeys(j, "", {"gravity", "dt", "substeps_per_frame", "duration", "output_interval", "water", "waters",
-                        "bodies", "ground", "camera"});
+                        "bodies", "ground", "camera", "events"});
     Scene s;
     s.directory = directory;
     if (j.contains("gravity")) s.gravity = r.vec3(j["gravity"], "gravity", -1e3, 1e3);  // any direction, or zero
@@ -738,6 +730,40 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
         if (c.contains("distance")) s.camera.distance = r.number(c["distance"], "camera.distance", 0.1, 1e4);
         if (c.contains("yaw")) s.camera.yaw = r.number(c["yaw"], "camera.yaw", -360.0, 360.0);
         if (c.contains("pitch")) s.camera.pitch = r.number(c["pitch"], "camera.pitch", -89.0, 89.0);
+    }
+    if (j.contains("events")) {  // the hysteresis of the water events (btBuoyancyEventSettings)
+        const json& e = j["events"];
+        r.requireObject(e, "events");
+        r.allowKeys(e, "events", {"enter_fraction", "leave_fraction", "submerged_fraction", "surfaced_fraction"});
+        const std::pair<const char*, double btBuoyancyEventSettings::*> fields[] = {
+            {"enter_fraction", &btBuoyancyEventSettings::enterFraction},
+            {"leave_fraction", &btBuoyancyEventSettings::leaveFraction},
+            {"submerged_fraction", &btBuoyancyEventSettings::submergedFraction},
+            {"surfaced_fraction", &btBuoyancyEventSettings::surfacedFraction}};
+        for (const auto& [name, field] : fields)
+            if (e.contains(name)) s.events.*field = r.number(e[name], std::string("events.") + name, 0.0, 1.0);
+        try {
+            s.events.validate();
+        } catch (const std::invalid_argument& ex) {  // the order of the thresholds, in the scene's names
+            std::string what = ex.what();
+            const std::string prefix = "btBuoyancyEventSettings::";
+            if (what.compare(0, prefix.size(), prefix) == 0) what = what.substr(prefix.size());
+            std::string key = "events";
+            for (const auto& [name, field] : fields) {
+                (void)field;
+                std::string camel = name;  // enter_fraction -> enterFraction
+                const std::size_t u = camel.find('_');
+                camel = camel.substr(0, u) + char(std::toupper(camel[u + 1])) + camel.substr(u + 2);
+                for (std::size_t at = what.find(camel); at != std::string::npos; at = what.find(camel))
+                    what.replace(at, camel.size(), name);
+            }
+            const std::size_t colon = what.find(": ");
+            if (colon != std::string::npos) {
+                key += "." + what.substr(0, colon);
+                what = what.substr(colon + 2);
+            }
+            r.fail(key, what);
+        }
     }
     if (!j.contains("bodies")) r.fail("bodies", "missing");
     if (!j["bodies"].is_array()) r.fail("bodies", "expected an array");
@@ -805,6 +831,20 @@ Scene loadSceneWaterFile(const std::string& path, double gravity,
                          const SceneWaterTypeFilter& refuseType) {
     const std::string text = readJsonFileText(path, "water file");
     return parseSceneWater(text, path, folderOf(path), gravity, refuseType);
+}
+
+btWaterBodyInfo SceneWaterBody::regionInfo() const {
+    const auto bt = [](const Eigen::Vector3d& v) { return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())); };
+    btWaterBodyInfo info;
+    info.regionKind = regionKind;
+    info.regionMin = bt(regionMin);
+    info.regionMax = bt(regionMax);
+    info.footprint = footprint;
+    info.bottom = bottom;
+    info.top = top;
+    for (const Eigen::Vector3d& v : meshVertices) info.meshVertices.push_back(bt(v));
+    info.meshTriangles = meshTriangles;
+    return info;
 }
 
 }  // namespace buoyancy::cli

@@ -4,6 +4,7 @@
 /// completely before anything runs. Every error names the file and the key, e.g.
 /// "boat.json: bodies[1].shape.size: expected an array of 3 numbers > 0".
 
+#include <BulletBuoyancy/bullet/btBuoyancyEvents.h>
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 #include <BulletBuoyancy/bullet/btMarineHydrodynamics.h>
@@ -102,6 +103,10 @@ struct SceneWaterBody {
     std::vector<Eigen::Vector3d> meshVertices;
     /// Mesh: three indices per triangle ("region.triangles", or the OBJ's faces fanned), outward.
     std::vector<int> meshTriangles;
+
+    /// The region as btBuoyancyWorld::addWaterBody takes it (kind, box, footprint, heights, mesh); name, surface and
+    /// density are left for the caller.
+    btWaterBodyInfo regionInfo() const;
 };
 
 /// The "camera" block: the view of `buoyancy run --png` and of the scene browser. Fields left out are
@@ -135,6 +140,9 @@ struct Scene {
     Eigen::Vector3d groundNormal = Eigen::Vector3d::UnitY();
     std::vector<SceneBody> bodies;
     SceneCamera camera;               ///< "camera": the pictures' and the browser's view
+    /// "events": the hysteresis of the water events (enter_fraction, leave_fraction, submerged_fraction,
+    /// surfaced_fraction; btBuoyancyEventSettings, whose defaults fill what is left out).
+    btBuoyancyEventSettings events;
     std::string directory;            ///< folder of the scene file (mesh paths are relative to it)
 };
 

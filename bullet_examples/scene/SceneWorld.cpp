@@ -111,21 +111,13 @@ std::unique_ptr<SceneWorld> buildSceneWorld(const Scene& scene, double importTim
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("water.frame: ") + e.what());
     }
+    w.buoyancy->setEventSettings(scene.events);  // checked by the loader
     for (std::size_t i = 0; i < scene.waters.size(); ++i) {
         const SceneWaterBody& body = scene.waters[i];
-        btWaterBodyInfo info;
+        btWaterBodyInfo info = body.regionInfo();
         info.name = "waters[" + std::to_string(i) + "]";
         info.surface = w.waterBodies[i].get();
         info.fluidDensity = body.density;
-        info.regionMin = btVector3(btScalar(body.regionMin.x()), btScalar(body.regionMin.y()), btScalar(body.regionMin.z()));
-        info.regionMax = btVector3(btScalar(body.regionMax.x()), btScalar(body.regionMax.y()), btScalar(body.regionMax.z()));
-        info.regionKind = body.regionKind;
-        info.footprint = body.footprint;
-        info.bottom = body.bottom;
-        info.top = body.top;
-        for (const Eigen::Vector3d& v : body.meshVertices)
-            info.meshVertices.push_back(btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())));
-        info.meshTriangles = body.meshTriangles;
         try {
             w.buoyancy->addWaterBody(info);
         } catch (const std::invalid_argument& e) {  // the loader checked the regions: a float rounding can remain

@@ -8,6 +8,8 @@
 // clock, the actions', the interactive water's) gives another trajectory, so the comparison can fail; bad blobs
 // (truncated at every length, a wrong magic, version, precision or kind, a corrupted byte, another body's blob) throw
 // std::invalid_argument naming the problem and change nothing; a restore from an event callback is refused.
+#include "MultiBodyChainScene.h"
+
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyEvents.h>
 #include <BulletBuoyancy/bullet/btBuoyancyImmediate.h>
@@ -25,10 +27,6 @@
 #include <BulletBuoyancy/water/btInteractiveWaterSurface.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
-#include <BulletDynamics/Featherstone/btMultiBody.h>
-#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
-#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
-#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 #include <btBulletDynamicsCommon.h>
 #include <catch2/catch.hpp>
 
@@ -590,57 +588,29 @@ struct OwnLoop {
     }
 };
 
-/// A chain of three boxes joined by hinges in a multibody world, in Gerstner waves; no contacts.
+/// A chain of three boxes joined by hinges in a multibody world (MultiBodyChainScene.h), in Gerstner waves; no contacts.
 struct ChainInWaves {
-    btDefaultCollisionConfiguration config;
-    btCollisionDispatcher dispatcher{&config};
-    btDbvtBroadphase broadphase;
-    btMultiBodyConstraintSolver solver;
-    btMultiBodyDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+    buoyancy_test::ChainScene scene{3, btVector3(0.5f, 0.2f, 0.3f), 500.0, start()};
     btGerstnerWaterSurface water{sea()};
-    btBuoyancyWorld buoyancy{&world, &water, 1000.0};
-    btBoxShape box{btVector3(0.5f, 0.2f, 0.3f)};
-    std::unique_ptr<btMultiBody> chain;
-    std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
+    btBuoyancyWorld buoyancy{&scene.world, &water, 1000.0};
+    btMultiBody* chain = scene.chain.get();
+    std::vector<std::unique_ptr<btMultiBodyLinkCollider>>& colliders = scene.colliders;
     std::unique_ptr<btBuoyancyMultiBodyAction> action;
 
+    static btTransform start() {
+        btTransform t = btTransform::getIdentity();
+        t.setOrigin(btVector3(0, 0.3f, 0));
+        t.setRotation(btQuaternion(btVector3(0, 1, 0), btScalar(0.4)));
+        return t;
+    }
     ChainInWaves() {
-        world.setGravity(btVector3(0, btScalar(-9.81), 0));
-        const btScalar mass = btScalar(500.0 * 8 * 0.5 * 0.2 * 0.3);
-        btVector3 inertia;
-        box.calculateLocalInertia(mass, inertia);
-        chain = std::make_unique<btMultiBody>(2, mass, inertia, false, false);
-        btTransform start = btTransform::getIdentity();
-        start.setOrigin(btVector3(0, 0.3f, 0));
-        start.setRotation(btQuaternion(btVector3(0, 1, 0), btScalar(0.4)));
-        chain->setBaseWorldTransform(start);
-        for (int i = 0; i < 2; ++i)
-            chain->setupRevolute(i, mass, inertia, i - 1, btQuaternion::getIdentity(), btVector3(0, 0, 1),
-                                 btVector3(0.5f, 0, 0), btVector3(0.5f, 0, 0), true);
-        chain->finalizeMultiDof();
         chain->setJointPos(0, btScalar(0.2));
         chain->setJointPos(1, btScalar(-0.3));
-        world.addMultiBody(chain.get());
-        for (int link = -1; link < 2; ++link) {
-            auto c = std::make_unique<btMultiBodyLinkCollider>(chain.get(), link);
-            c->setCollisionShape(&box);
-            world.addCollisionObject(c.get(), btBroadphaseProxy::DefaultFilter,
-                                     btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::DefaultFilter);
-            if (link < 0)
-                chain->setBaseCollider(c.get());
-            else
-                chain->getLink(link).m_collider = c.get();
-            colliders.push_back(std::move(c));
-        }
         syncColliders();
-        action = std::make_unique<btBuoyancyMultiBodyAction>(chain.get(), &buoyancy);
-        world.addAction(action.get());
+        action = std::make_unique<btBuoyancyMultiBodyAction>(chain, &buoyancy);
+        scene.world.addAction(action.get());
     }
-    ~ChainInWaves() {
-        world.removeAction(action.get());
-        for (auto& c : colliders) world.removeCollisionObject(c.get());
-        world.removeMultiBody(chain.get());
-    }
+    ~ChainInWaves() { scene.world.removeAction(action.get()); }
     void syncColliders() {
         btAlignedObjectArray<btQuaternion> q;
         btAlignedObjectArray<btVector3> o;
@@ -650,21 +620,22 @@ struct ChainInWaves {
     std::vector<unsigned char> run(int n) {
         std::vector<unsigned char> out;
         for (int i = 0; i < n; ++i) {
-            world.stepSimulation(btScalar(kSubstep), 1, btScalar(kSubstep));
+            scene.world.stepSimulation(btScalar(kSubstep), 1, btScalar(kSubstep));
             for (const auto& c : colliders) appendBytes(out, c->getWorldTransform());
             appendBytes(out, chain->getBaseVel());
             for (int j = 0; j < 2; ++j) appendBytes(out, chain->getJointVel(j));
         }
         return out;
     }
-    /// The multibody's own state, as a user saves it: base pose and velocities, joint positions and velocities.
+    /// The multibody's own state, as a user saves it: base position and orientation (as Bullet stores them: a
+    /// transform would round the quaternion), velocities, joint positions and velocities.
     struct Own {
-        btTransform base;
-        btVector3 baseVel, baseOmega;
+        btVector3 basePos, baseVel, baseOmega;
+        btQuaternion worldToBase;
         btScalar jointPos[2], jointVel[2];
     };
     Own saveOwn() const {
-        Own s{chain->getBaseWorldTransform(), chain->getBaseVel(), chain->getBaseOmega(), {}, {}};
+        Own s{chain->getBasePos(), chain->getBaseVel(), chain->getBaseOmega(), chain->getWorldToBaseRot(), {}, {}};
         for (int j = 0; j < 2; ++j) {
             s.jointPos[j] = chain->getJointPos(j);
             s.jointVel[j] = chain->getJointVel(j);
@@ -672,7 +643,8 @@ struct ChainInWaves {
         return s;
     }
     void restoreOwn(const Own& s) {
-        chain->setBaseWorldTransform(s.base);
+        chain->setBasePos(s.basePos);
+        chain->setWorldToBaseRot(s.worldToBase);
         chain->setBaseVel(s.baseVel);
         chain->setBaseOmega(s.baseOmega);
         for (int j = 0; j < 2; ++j) {

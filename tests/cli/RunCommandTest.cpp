@@ -232,3 +232,96 @@ TEST_CASE("buoyancy bench: a progress line per part done", "[cli]") {
     CHECK_THAT(r.err, Contains("bench:  50 % (1 of 2 parts)"));
     CHECK_THAT(r.err, Contains("bench: 100 % (2 of 2 parts)"));
 }
+
+namespace {
+
+/// A crate (1 x 0.5 x 1 m, density 500) dropped with its bottom `drop` m above flat water; `events` is the scene's
+/// "events" object ("" for none).
+std::string writeDropScene(const std::string& dir, const std::string& name, double drop, const std::string& events) {
+    const std::string path = dir + "/" + name + ".json";
+    std::ofstream f(path);
+    f << R"({"gravity": [0, -9.81, 0], "dt": 0.004166666666666667, "substeps_per_frame": 4, "duration": 3,)"
+      << R"( "output_interval": 0.5, "water": {"type": "flat", "height": 0.0, "density": 1000},)"
+      << (events.empty() ? "" : R"( "events": )" + events + ",")
+      << R"( "bodies": [{"name": "crate", "shape": {"type": "box", "size": [1, 0.5, 1]}, "density": 500,)"
+      << R"( "position": [0, )" << drop + 0.25 << R"(, 0]}]})" << '\n';
+    return path;
+}
+
+struct EventRow {
+    double t = 0, fraction = 0;
+    std::string body, event, water;
+};
+
+std::vector<EventRow> readEvents(const std::string& path, std::string& header) {
+    std::ifstream f(path);
+    std::getline(f, header);
+    std::vector<EventRow> rows;
+    for (std::string line; std::getline(f, line);) {
+        // t,substep,body,event,water_body,submerged_fraction
+        EventRow r;
+        std::stringstream ss(line);
+        std::string t, substep, fraction;
+        std::getline(ss, t, ',');
+        std::getline(ss, substep, ',');
+        std::getline(ss, r.body, ',');
+        std::getline(ss, r.event, ',');
+        std::getline(ss, r.water, ',');
+        std::getline(ss, fraction, ',');
+        r.t = std::strtod(t.c_str(), nullptr);
+        r.fraction = std::strtod(fraction.c_str(), nullptr);
+        rows.push_back(r);
+    }
+    return rows;
+}
+
+}  // namespace
+
+TEST_CASE("buoyancy run: events.csv has the water events with the scene's hysteresis", "[cli]") {
+    const std::string dir = scratchDir("run_events");
+    const double drop = 1.0;  // the crate's bottom falls 1 m: it reaches the water at t = sqrt(2 drop / g)
+    const double touch = std::sqrt(2 * drop / 9.81);
+    std::string header;
+
+    REQUIRE(runCli({"run", writeDropScene(dir, "default", drop, ""), "--out", dir + "/default", "--quiet"}).exit_code == 0);
+    const std::vector<EventRow> rows = readEvents(dir + "/default/events.csv", header);
+    CHECK(header == "t,substep,body,event,water_body,submerged_fraction");
+    REQUIRE(!rows.empty());
+    CHECK(rows[0].body == "crate");
+    CHECK(rows[0].event == "enter_water");
+    CHECK(rows[0].water == "water");
+    // Enters at 1 % of its volume (the default), i.e. 5 mm deep at about 4.4 m/s: within a substep or two of the touch.
+    CHECK(rows[0].t > touch);
+    CHECK(rows[0].t < touch + 3 * 0.0042);
+    CHECK(rows[0].fraction >= 0.01);
+    for (const EventRow& r : rows) CHECK(r.event != "leave_water");  // it floats: never leaves
+
+    // "events": enter at 30 % of the volume instead: later, at a larger fraction.
+    REQUIRE(runCli({"run", writeDropScene(dir, "late", drop, R"({"enter_fraction": 0.3, "leave_fraction": 0.2})"),
+                    "--out", dir + "/late", "--quiet"})
+                .exit_code == 0);
+    const std::vector<EventRow> late = readEvents(dir + "/late/events.csv", header);
+    REQUIRE(!late.empty());
+    CHECK(late[0].event == "enter_water");
+    CHECK(late[0].fraction >= 0.3);
+    CHECK(late[0].t > rows[0].t);
+}
+
+TEST_CASE("buoyancy run: bad \"events\" thresholds name the key", "[cli]") {
+    const std::string dir = scratchDir("run_events_bad");
+    struct Case {
+        const char* events;
+        const char* key;
+    };
+    for (const Case& c : {Case{R"({"leave_fraction": 0.5})", "events.leave_fraction"},
+                          Case{R"({"enter_fraction": 1.5})", "events.enter_fraction"},
+                          Case{R"({"surfaced_fraction": 0.995})", "events.surfaced_fraction"},
+                          Case{R"({"enter": 0.5})", "events"},
+                          Case{"0.5", "events"}}) {
+        const auto r = runCli({"run", writeDropScene(dir, "bad", 1.0, c.events), "--out", dir + "/out", "--quiet"});
+        INFO(c.events << " -> " << r.err);
+        CHECK(r.exit_code == 2);
+        CHECK_THAT(r.err, Contains(c.key));
+        CHECK_THAT(r.err, Contains("bad.json"));
+    }
+}
