@@ -32,6 +32,18 @@ double volumeOf(const buoyancy::TriangleMesh& m) {
     return v / 6.0;
 }
 
+/// A user's Bullet world, y up, with flat water at 0 and its buoyancy context.
+struct FlatWaterWorld {
+    btDefaultCollisionConfiguration config;
+    btCollisionDispatcher dispatcher{&config};
+    btDbvtBroadphase broadphase;
+    btSequentialImpulseConstraintSolver solver;
+    btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+    btFlatWaterSurface water{0.0};
+    btBuoyancyWorld buoyancyWorld{&world, &water, 1000.0};
+    FlatWaterWorld() { world.setGravity(btVector3(0, btScalar(-9.81), 0)); }
+};
+
 Eigen::Vector3d extent(const buoyancy::TriangleMesh& m, bool upper) {
     Eigen::Vector3d e = m.vertices.front();
     for (const auto& v : m.vertices) e = upper ? Eigen::Vector3d(e.cwiseMax(v)) : Eigen::Vector3d(e.cwiseMin(v));
@@ -207,14 +219,9 @@ TEST_CASE("your own btRigidBody: a btBoxShape, btSphereShape or btCapsuleShape b
     const Case& c = cases[which];
     btCollisionShape* shape = shapes[which];
 
-    btDefaultCollisionConfiguration config;
-    btCollisionDispatcher dispatcher(&config);
-    btDbvtBroadphase broadphase;
-    btSequentialImpulseConstraintSolver solver;
-    btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
-    world.setGravity(btVector3(0, -9.81f, 0));
-    btFlatWaterSurface water(0.0);
-    btBuoyancyWorld buoyancyWorld(&world, &water, 1000.0);
+    FlatWaterWorld scene;
+    btDiscreteDynamicsWorld& world = scene.world;
+    btBuoyancyWorld& buoyancyWorld = scene.buoyancyWorld;
 
     const btScalar mass = btScalar(c.density * c.volume);
     btVector3 inertia;
@@ -260,14 +267,9 @@ TEST_CASE("your own btRigidBody: a btSphereShape in flat water gets the sphere's
         (kPi * h * h * (3 * R - h) / 3 < s * V ? lo : hi) = h;
     }
     const double h = 0.5 * (lo + hi);
-    btDefaultCollisionConfiguration config;
-    btCollisionDispatcher dispatcher(&config);
-    btDbvtBroadphase broadphase;
-    btSequentialImpulseConstraintSolver solver;
-    btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
-    world.setGravity(btVector3(0, btScalar(-9.81), 0));
-    btFlatWaterSurface water(0.0);
-    btBuoyancyWorld buoyancyWorld(&world, &water, 1000.0);
+    FlatWaterWorld scene;
+    btDiscreteDynamicsWorld& world = scene.world;
+    btBuoyancyWorld& buoyancyWorld = scene.buoyancyWorld;
     btSphereShape sphere{btScalar(R)};
     const btScalar mass = btScalar(1000.0 * s * V);
     btVector3 inertia;
@@ -304,14 +306,9 @@ TEST_CASE("your own btRigidBody: a btCapsuleShape in flat water gets the capsule
     btCapsuleShapeZ alongZ{btScalar(r), btScalar(2 * halfHeight)};
     btCapsuleShape* shapes[] = {&alongX, &alongY, &alongZ};
     for (int axis = 0; axis < 3; ++axis) {
-        btDefaultCollisionConfiguration config;
-        btCollisionDispatcher dispatcher(&config);
-        btDbvtBroadphase broadphase;
-        btSequentialImpulseConstraintSolver solver;
-        btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
-        world.setGravity(btVector3(0, btScalar(-9.81), 0));
-        btFlatWaterSurface water(0.0);
-        btBuoyancyWorld buoyancyWorld(&world, &water, 1000.0);
+        FlatWaterWorld scene;
+        btDiscreteDynamicsWorld& world = scene.world;
+        btBuoyancyWorld& buoyancyWorld = scene.buoyancyWorld;
         btRigidBody::btRigidBodyConstructionInfo info(100, nullptr, shapes[axis], btVector3(10, 10, 10));
         info.m_startWorldTransform.setOrigin(btVector3(0.2f, -0.1f, 0.3f));
         info.m_startWorldTransform.setRotation(btQuaternion(btVector3(0.3f, 0.2f, 1.0f).normalized(), btScalar(0.6)));
@@ -345,15 +342,7 @@ TEST_CASE("your own btRigidBody: a btBoxShape in flat water takes the exact box 
     // trajectories may differ by rounding only.
     const btVector3 half(0.5f, 0.2f, 0.4f);
     btBoxShape box(half);
-    struct Run {
-        btDefaultCollisionConfiguration config;
-        btCollisionDispatcher dispatcher{&config};
-        btDbvtBroadphase broadphase;
-        btSequentialImpulseConstraintSolver solver;
-        btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
-        btFlatWaterSurface water{0.0};
-        btBuoyancyWorld buoyancyWorld{&world, &water, 1000.0};
-    };
+    using Run = FlatWaterWorld;
     auto start = [&](Run& run, btRigidBody*& body) {
         run.world.setGravity(btVector3(0, btScalar(-9.81), 0));
         const btScalar mass = btScalar(0.45 * 1000 * 8 * 0.5 * 0.2 * 0.4);
@@ -402,14 +391,9 @@ TEST_CASE("your own btRigidBody: a btBoxShape in flat water takes the exact box 
 }
 
 TEST_CASE("setBodyMassFromShape: mass and inertia of boxes, spheres and capsules in closed form", "[bullet][shapes]") {
-    btDefaultCollisionConfiguration config;
-    btCollisionDispatcher dispatcher(&config);
-    btDbvtBroadphase broadphase;
-    btSequentialImpulseConstraintSolver solver;
-    btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
-    world.setGravity(btVector3(0, btScalar(-9.81), 0));
-    btFlatWaterSurface water(0.0);
-    btBuoyancyWorld buoyancyWorld(&world, &water, 1000.0);
+    FlatWaterWorld scene;
+    btDiscreteDynamicsWorld& world = scene.world;
+    btBuoyancyWorld& buoyancyWorld = scene.buoyancyWorld;
     const double rho = 600;
     auto bodyOf = [&](btCollisionShape& shape) {
         btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, &shape, btVector3(1, 1, 1));
