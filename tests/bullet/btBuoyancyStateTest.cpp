@@ -661,15 +661,12 @@ TEST_CASE("save and restore: immediate mode in a user's own loop runs on bit-ide
     OwnLoop loop;
     loop.run(60);
     const std::vector<unsigned char> blob = loop.buoyancy->saveState();
-    const btTransform pose = loop.body->getWorldTransform();
-    const btVector3 v = loop.body->getLinearVelocity(), w = loop.body->getAngularVelocity();
+    const RigidBodyState body = RigidBodyState::save(*loop.body);  // the user's own body, as they save it
     const double time = loop.time;
     const std::vector<unsigned char> first = loop.run(240);
 
     const auto restoreBody = [&] {
-        loop.body->setCenterOfMassTransform(pose);
-        loop.body->setLinearVelocity(v);
-        loop.body->setAngularVelocity(w);
+        body.restore(*loop.body);
         loop.time = time;
     };
     restoreBody();

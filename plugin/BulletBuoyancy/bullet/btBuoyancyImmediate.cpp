@@ -38,29 +38,45 @@ const btBuoyancyResult& btBuoyancyImmediate::applyBuoyancyImpulse(const btWaterS
     // The action's substep advances the clock by dt to the end of the step: start it dt earlier.
     if (dt > 0 && std::isfinite(dt)) m_context.setTime(time - dt);
     m_action->updateAction(nullptr, btScalar(dt));
-    m_context.setWater(nullptr);  // the caller's surface is not kept
+    m_context.setWater(nullptr);  // the caller's surface is not kept (its address is: the warm starts' owner)
+    m_lastWater = &water;
     return m_action->getLastResult();
 }
 
 std::vector<unsigned char> btBuoyancyImmediate::saveState() const {
+    // The evaluation names its warm starts' water by its place in the context: lend it the last water for the save.
+    btBuoyancyWorld& context = const_cast<btBuoyancyWorld&>(m_context);
+    context.setWater(m_lastWater);
     btBuoyancyStateWriter out(btBuoyancyStateKind::Immediate);
-    out.blob(m_context.saveState());
-    out.blob(m_action->saveState());
+    try {
+        out.blob(m_context.saveState());
+        out.blob(m_action->saveState());
+    } catch (...) {
+        context.setWater(nullptr);
+        throw;
+    }
+    context.setWater(nullptr);
     return out.bytes();
 }
 
-void btBuoyancyImmediate::restoreState(const unsigned char* data, std::size_t size) {
+void btBuoyancyImmediate::restoreState(const unsigned char* data, std::size_t size, const btWaterSurface* water) {
     btBuoyancyStateReader in(data, size, btBuoyancyStateKind::Immediate, "btBuoyancyImmediate::restoreState");
     const std::vector<unsigned char> context = in.blob("context");
     const std::vector<unsigned char> action = in.blob("evaluation");
     in.finish();
+    const btWaterSurface* next = water ? water : m_lastWater;
     // Each part checks itself; if the second refuses after the first applied, the first is put back as it was.
+    m_context.setWater(m_lastWater);
     const std::vector<unsigned char> before = m_context.saveState();
-    m_context.restoreState(context);
+    m_context.setWater(next);  // the warm starts are read for the water of the next steps
     try {
+        m_context.restoreState(context);
         m_action->restoreState(action);
     } catch (...) {
         m_context.restoreState(before);
+        m_context.setWater(nullptr);
         throw;
     }
+    m_context.setWater(nullptr);
+    m_lastWater = next;
 }

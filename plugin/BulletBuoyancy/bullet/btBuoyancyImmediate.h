@@ -65,17 +65,24 @@ public:
     btBuoyancyWorld& getContext() { return m_context; }
 
     /// The state this object carries from step to step, as bytes (btBuoyancyState.h): its context's (water frame,
-    /// clock, gravity) and its evaluation's (level-of-detail history, caches, sleep decision, last result). With your
-    /// body's own state (transform, velocities) restored too, the next steps repeat bit for bit.
+    /// clock, gravity) and its evaluation's (level-of-detail history, the water queries' warm starts, sleep decision,
+    /// last result). The warm starts belong to the water last given to applyBuoyancyImpulse (remembered by address
+    /// only, never read). With your body's own state (transform, velocities, activation state, deactivation time,
+    /// sleeping thresholds) restored too, the next steps repeat bit for bit.
     std::vector<unsigned char> saveState() const;
-    /// Restore what saveState wrote into an object built the same way (same shape and settings). Read and checked
-    /// whole; a blob either applies completely or not at all.
+    /// Restore what saveState wrote into an object built the same way (same shape and settings). `water` is the
+    /// surface the next steps will use, whose warm starts the blob holds (nullptr: the water last given to
+    /// applyBuoyancyImpulse; with neither, the warm starts are dropped and the next results differ in the last bits).
+    /// Read and checked whole; a blob either applies completely or not at all.
     /// @throws std::invalid_argument naming the problem (wrong kind, truncated, checksum, another body's state, ...)
-    void restoreState(const unsigned char* data, std::size_t size);
+    void restoreState(const unsigned char* data, std::size_t size, const btWaterSurface* water = nullptr);
     /// restoreState of a whole vector. @throws std::invalid_argument (see above)
-    void restoreState(const std::vector<unsigned char>& blob) { restoreState(blob.data(), blob.size()); }
+    void restoreState(const std::vector<unsigned char>& blob, const btWaterSurface* water = nullptr) {
+        restoreState(blob.data(), blob.size(), water);
+    }
 
 private:
     btBuoyancyWorld m_context;
     std::unique_ptr<btBuoyancyAction> m_action;
+    const btWaterSurface* m_lastWater = nullptr;  ///< the water of the last call, by address (its warm starts' owner)
 };

@@ -149,7 +149,7 @@ void btBuoyancyMultiBodyAction::restoreState(const unsigned char* data, std::siz
     for (const auto& part : m_parts) before.push_back(part->buoyancy->saveState());
     std::size_t done = 0;
     try {
-        for (; done < m_parts.size(); ++done) m_parts[done]->buoyancy->restoreState(parts[done]);
+        for (; done < m_parts.size(); ++done) m_parts[done]->buoyancy->restoreState(parts[done], m_world->getWater());
     } catch (...) {
         for (std::size_t i = 0; i < done; ++i) m_parts[i]->buoyancy->restoreState(before[i]);
         throw;
