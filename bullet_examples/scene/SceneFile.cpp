@@ -639,7 +639,7 @@ void readWaters(const Reader& r, const json& j, Scene& s, const std::string& dir
                 }
             }
         }
-        // The region checked as the world will (a simple footprint, a closed convex mesh), and its bounding box.
+        // The region checked as the world will (a simple footprint, a closed mesh), and its bounding box.
         const btWaterBodyInfo info = body.regionInfo();
         btWaterBody checked;
         checked.name = key;

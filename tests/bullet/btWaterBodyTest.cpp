@@ -123,6 +123,46 @@ btWaterBodyInfo prismTank(const char* name, const btWaterSurface* surface, const
     return info;
 }
 
+/// A closed mesh: the polygon `ring` (either winding) with its triangles `cut` (indices into ring), swept along the
+/// world axis `along` (0 x, 1 y, 2 z) from w0 to w1; the ring's two coordinates are the other two axes in order (along y:
+/// (x, z); along z: (x, y)). Oriented outward (the whole mesh is flipped when its volume comes out negative).
+btWaterBodyInfo sweptMesh(const char* name, const btWaterSurface* surface, const Footprint& ring,
+                          const std::vector<std::array<int, 3>>& cut, int along, double w0, double w1) {
+    btWaterBodyInfo info;
+    info.name = name;
+    info.surface = surface;
+    info.regionKind = btWaterRegionKind::Mesh;
+    const int n = int(ring.size());
+    const int u = along == 0 ? 1 : 0, v = along == 2 ? 1 : 2;
+    for (const double w : {w0, w1})
+        for (const auto& p : ring) {
+            btVector3 q;
+            q[along] = btScalar(w);
+            q[u] = btScalar(p[0]);
+            q[v] = btScalar(p[1]);
+            info.meshVertices.push_back(q);
+        }
+    for (const auto& t : cut) {
+        info.meshTriangles.insert(info.meshTriangles.end(), {t[0], t[2], t[1]});              // the cap at w0
+        info.meshTriangles.insert(info.meshTriangles.end(), {n + t[0], n + t[1], n + t[2]});  // the cap at w1
+    }
+    for (int k = 0; k < n; ++k) {
+        const int j = (k + 1) % n;
+        info.meshTriangles.insert(info.meshTriangles.end(), {k, j, n + j, k, n + j, n + k});
+    }
+    // Flip everything when the caps' winding made the volume negative (the sides follow the same ring order).
+    double volume6 = 0;
+    for (std::size_t t = 0; t < info.meshTriangles.size(); t += 3) {
+        const btVector3 &a = info.meshVertices[std::size_t(info.meshTriangles[t])],
+                        &b = info.meshVertices[std::size_t(info.meshTriangles[t + 1])],
+                        &c = info.meshVertices[std::size_t(info.meshTriangles[t + 2])];
+        volume6 += double(a.dot(b.cross(c)));
+    }
+    if (volume6 < 0)
+        for (std::size_t t = 0; t < info.meshTriangles.size(); t += 3) std::swap(info.meshTriangles[t + 1], info.meshTriangles[t + 2]);
+    return info;
+}
+
 /// A tank whose wall z = 2 runs from x = −2 to 2: the pentagon (−2, −2), (2, −2), (3, 0), (2, 2), (−2, 2).
 const Footprint kTankRing = {{-2, -2}, {2, -2}, {3, 0}, {2, 2}, {-2, 2}};
 
@@ -464,22 +504,121 @@ TEST_CASE("water bodies: bad footprints and meshes are refused with a message na
                       Contains("fold back"));
     CHECK_THROWS_WITH(world.addWaterBody(polygonWater("flat", &water, 1000.0, kLake, 1, 1)),
                       Contains("\"flat\"") && Contains("top: must be greater than bottom"));
-    // A cube tank with a corner pushed in: a dent, not convex.
-    btWaterBodyInfo dent = prismTank("dent", &water, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0.0, 1.0);
-    dent.meshVertices[6] = btVector3(0.5f, 0.5f, 0.5f);
-    CHECK_THROWS_WITH(world.addWaterBody(dent), Contains("region mesh of water body 'dent' is not convex: vertex"));
+    // A C-shaped tank (its section in x, y swept along z): the lower arm's top lies under the upper arm's.
+    const Footprint cSection = {{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 2}, {3, 2}, {3, 3}, {0, 3}};
+    CHECK_THROWS_WITH(world.addWaterBody(sweptMesh("cee", &water, cSection,
+                                                   {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 7}, {4, 5, 6}, {4, 6, 7}}, 2,
+                                                   0.0, 1.0)),
+                      Contains("\"cee\"") && Contains("the region mesh of water body 'cee' overhangs: triangles") &&
+                          Contains("m^2 in common seen from above"));
     btWaterBodyInfo open = prismTank("open", &water, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0.0, 1.0);
     open.meshTriangles.resize(open.meshTriangles.size() - 3);
     CHECK_THROWS_WITH(world.addWaterBody(open), Contains("\"open\"") && Contains("not closed"));
     btWaterBodyInfo inward = prismTank("inward", &water, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0.0, 1.0);
     for (std::size_t t = 0; t < inward.meshTriangles.size(); t += 3) std::swap(inward.meshTriangles[t + 1], inward.meshTriangles[t + 2]);
     CHECK_THROWS_WITH(world.addWaterBody(inward), Contains("face inward"));
-    // A 40-sided tank: 42 distinct planes, more than a region clips by.
+    CHECK(world.getWaterBodies().empty());
+}
+
+TEST_CASE("water bodies: a mesh of more than 32 face planes is taken as columns under its footprint", "[bullet][waters]") {
+    // A 40-sided tank (42 distinct planes, more than a convex region clips by) of circumradius 2 m: its inscribed
+    // radius is 2 cos(π/40) = 1.99383 m.
+    const btFlatWaterSurface water(0.5);
+    btBuoyancyWorld world(nullptr, 1000.0, kGravity);
     Footprint round;
     for (int k = 0; k < 40; ++k) round.push_back({2.0 * std::cos(0.05 * M_PI * k), 2.0 * std::sin(0.05 * M_PI * k)});
-    CHECK_THROWS_WITH(world.addWaterBody(prismTank("round", &water, round, 0.0, 1.0)),
-                      Contains("the mesh has 42 distinct face planes, at most 32 are supported"));
-    CHECK(world.getWaterBodies().empty());
+    REQUIRE(world.addWaterBody(prismTank("round", &water, round, 0.0, 1.0)) == 0);
+    const btWaterBody& tank = world.getWaterBodies()[0];
+    CHECK(tank.meshColumns);
+    const double inscribed = 2.0 * std::cos(M_PI / 40);
+    CHECK(tank.sphereWithinSides(btWaterFrame(), Eigen::Vector3d(0, 0.5, 0), inscribed - 1e-4));
+    CHECK_FALSE(tank.sphereWithinSides(btWaterFrame(), Eigen::Vector3d(0, 0.5, 0), inscribed + 1e-4));
+    CHECK(world.queryWater(btVector3(1.9f, 0.25f, 0)).waterBody == 0);
+    CHECK(world.queryWater(btVector3(1.9f, 0.25f, 0.7f)).waterBody == -1);  // 1.9² + 0.7² > 2²: outside
+    CHECK(world.queryWater(btVector3(0, -0.25f, 0)).waterBody == -1);       // below its floor
+    CHECK(tank.distanceTo(btWaterFrame(), Eigen::Vector3d(0, -0.25, 0)) == Approx(0.25));
+    // A box's prism pieces tile the footprint: a 1 m cube wholly inside gets unbounded water's volume.
+    std::vector<buoyancy::WaterRegion> pieces;
+    tank.appendWaterRegions(btWaterFrame(), pieces);
+    CHECK(pieces.size() == 38);  // the lid's fan of 40 corners
+    const auto h = inRegion(tank, buoyancy::makeBoxMesh(1.0, 1.0, 1.0), Eigen::Isometry3d(Eigen::Translation3d(0.3, 0.3, 0.2)));
+    CHECK(h.submerged_volume == Approx(0.7).epsilon(1e-12));
+}
+
+/// The L-shaped lake's footprint cut into triangles (same winding as kLake).
+const std::vector<std::array<int, 3>> kLakeCut = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}};
+
+TEST_CASE("water bodies: an L-shaped lock given as a mesh gets what the same L as a polygon lake gives",
+          "[bullet][waters]") {
+    // The L-shaped lake of the polygon test as a closed mesh (non-convex: taken as columns). The 2 × 1 × 2 m box over
+    // the notch's corner: by hand, 1 m² + 0.75 m² of its footprint inside, D = 0.7 m deep (see the polygon test).
+    const double level = 0.2, rho = 1000.0, D = level + 0.5;
+    const btFlatWaterSurface water(level);
+    btBuoyancyWorld world(nullptr, rho, kGravity);
+    REQUIRE(world.addWaterBody(sweptMesh("lock", &water, kLake, kLakeCut, 1, -3.0, 1.0)) == 0);
+    const btWaterBody& lock = world.getWaterBodies()[0];
+    CHECK(lock.meshColumns);
+    const auto h = inRegion(lock, buoyancy::makeBoxMesh(2.0, 1.0, 2.0), Eigen::Isometry3d(Eigen::Translation3d(2.5, 0.0, 2.5)));
+    const double A1 = 1.0, A2 = 0.75, V = (A1 + A2) * D;
+    CHECK(h.submerged_volume == Approx(V).epsilon(1e-12));
+    CHECK(h.centre_of_buoyancy.x() == Approx((A1 * 2.5 + A2 * 1.75) / (A1 + A2)).epsilon(1e-12));
+    CHECK(h.centre_of_buoyancy.z() == Approx((A1 * 1.75 + A2 * 2.75) / (A1 + A2)).epsilon(1e-12));
+    CHECK(h.force.y() == Approx(rho * kGravity * D * (A1 + A2)).epsilon(1e-12));
+    CHECK(h.force.x() == Approx(rho * kGravity * D * D / 2 * (2.0 - 0.5)).epsilon(1e-12));
+    CHECK(h.force.z() == Approx(rho * kGravity * D * D / 2 * (2.0 - 0.5)).epsilon(1e-12));
+    // Point queries: the arm, the notch, below the floor, above the lid (the column).
+    CHECK(world.queryWater(btVector3(3, -1, 1)).waterBody == 0);
+    CHECK(world.queryWater(btVector3(3, -1, 3)).waterBody == -1);
+    CHECK(world.queryWater(btVector3(1, -4, 1)).waterBody == -1);
+    CHECK(world.queryWater(btVector3(1, 5, 3)).waterBody == 0);
+    CHECK(lock.distanceTo(btWaterFrame(), Eigen::Vector3d(3.0, 0.0, 3.0)) == Approx(1.0));
+    CHECK(lock.sphereWithinSides(btWaterFrame(), Eigen::Vector3d(1.0, 0.0, 1.0), 0.9));
+    CHECK_FALSE(lock.sphereWithinSides(btWaterFrame(), Eigen::Vector3d(1.5, 0.0, 1.5), 0.8));  // the notch's corner
+    // A polygon lake in the notch touches the lock (accepted); one reaching into its arm overlaps (refused).
+    CHECK(world.addWaterBody(polygonWater("notch", &water, rho, {{2, 2}, {4, 2}, {4, 4}, {2, 4}}, -3.0, 1.0)) == 1);
+    CHECK_THROWS_WITH(world.addWaterBody(polygonWater("pond", &water, rho, {{3, -1}, {5, -1}, {5, 1}, {3, 1}}, -3.0, 1.0)),
+                      Contains("\"pond\"") && Contains("\"lock\"") && Contains("overlap"));
+
+    // Through a world's step: the action sees the box straddle the lock's shore and clips it likewise.
+    WaterBodiesWorld w;
+    w.buoyancy.addWaterBody(sweptMesh("lock", &water, kLake, kLakeCut, 1, -3.0, 1.0));
+    const std::size_t i = w.addCrate(500.0, 2.5, 0.0, 2.5, Eigen::Vector3d(2.0, 1.0, 2.0));
+    w.world.stepSimulation(btScalar(1.0 / 240), 1, btScalar(1.0 / 240));
+    CHECK(double(w.actions[i]->getLastResult().submergedVolume) == Approx(V).epsilon(1e-3));
+}
+
+/// A stepped pool's section in (x, y): the deep end x in [0, 4] down to y = −3, the shallow end x in [4, 8] down to
+/// y = −1, the lid at y = 1; swept along z from 0 to 4.
+const Footprint kStepSection = {{0, -3}, {4, -3}, {4, -1}, {8, -1}, {8, 1}, {0, 1}};
+const std::vector<std::array<int, 3>> kStepCut = {{0, 1, 2}, {0, 2, 5}, {2, 3, 4}, {2, 4, 5}};
+
+TEST_CASE("water bodies: a stepped pool mesh holds water down to each end's floor and a crate floats at its draft",
+          "[bullet][waters]") {
+    const btFlatWaterSurface water(0.0);
+    WaterBodiesWorld w;
+    REQUIRE(w.buoyancy.addWaterBody(sweptMesh("pool", &water, kStepSection, kStepCut, 2, 0.0, 4.0)) == 0);
+    CHECK(w.buoyancy.getWaterBodies()[0].meshColumns);
+    const auto at = [&](double x, double y, double z) {
+        return w.buoyancy.queryWater(btVector3(btScalar(x), btScalar(y), btScalar(z)));
+    };
+    CHECK(at(2, -2.5, 2).waterBody == 0);   // deep end, above its floor
+    CHECK(at(6, -0.5, 2).waterBody == 0);   // shallow end
+    CHECK(at(6, -2.0, 2).waterBody == -1);  // under the shallow end's floor
+    CHECK(at(2, -3.5, 2).waterBody == -1);  // under the deep end's floor
+    CHECK(double(at(2, -2.5, 2).depth) == Approx(2.5));
+    // Regions under the shallow end: one sharing its floor and the step's riser is accepted, one reaching 0.5 m up
+    // into the pool across the step is refused, one under the deep end's floor accepted.
+    CHECK(w.buoyancy.addWaterBody(boxWater("cellar", &water, 1000.0, btVector3(4, -3, 0), btVector3(8, -1, 4))) == 1);
+    CHECK(w.buoyancy.addWaterBody(boxWater("sump", &water, 1000.0, btVector3(0, -5, 0), btVector3(4, -3, 4))) == 2);
+    CHECK_THROWS_WITH(w.buoyancy.addWaterBody(boxWater("riser", &water, 1000.0, btVector3(3.5, -2, 1), btVector3(4.5, -1.5, 2))),
+                      Contains("\"riser\"") && Contains("\"pool\"") && Contains("overlap"));
+    // A crate of density 600 kg/m³ in each end floats with draft 0.6 × 0.5 m (Archimedes).
+    const std::size_t deep = w.addCrate(600.0, 2.0, 0.5, 2.0), shallow = w.addCrate(600.0, 6.0, 0.5, 2.0);
+    w.run(8.0);
+    for (const std::size_t i : {deep, shallow}) {
+        const double bottom = w.centreY(i) - 0.25;
+        CHECK(-bottom == Approx(0.6 * 0.5).margin(2e-3));
+    }
 }
 
 TEST_CASE("water bodies: point queries answer with the polygon lake or the mesh tank the point is in", "[bullet][waters]") {

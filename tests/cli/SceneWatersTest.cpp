@@ -184,6 +184,16 @@ TEST_CASE("scene waters: bad polygon and mesh regions name their key", "[cli][wa
     CHECK_THROWS_WITH(one(R"({"vertices": [[0, 0, 0], [2, 0, 0], [0, 0, 2], [0, 2, 0]],
                               "triangles": [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 2, 3]]})"),
                       Contains("s.json: waters[0].region.triangles: meshTriangles: the mesh is not closed"));
+    // A C-shaped vessel (section in x, y, swept along z): its lower arm's top lies under its upper arm.
+    CHECK_THROWS_WITH(
+        one(R"({"vertices": [[0,0,0],[3,0,0],[3,1,0],[1,1,0],[1,2,0],[3,2,0],[3,3,0],[0,3,0],
+                             [0,0,1],[3,0,1],[3,1,1],[1,1,1],[1,2,1],[3,2,1],[3,3,1],[0,3,1]],
+                "triangles": [[0,2,1],[8,9,10],[0,3,2],[8,10,11],[0,4,3],[8,11,12],[0,7,4],[8,12,15],[4,6,5],
+                              [12,13,14],[4,7,6],[12,14,15],[0,1,9],[0,9,8],[1,2,10],[1,10,9],[2,3,11],[2,11,10],
+                              [3,4,12],[3,12,11],[4,5,13],[4,13,12],[5,6,14],[5,14,13],[6,7,15],[6,15,14],[7,0,8],
+                              [7,8,15]]})"),
+        Contains("s.json: waters[0].region.triangles: meshTriangles: the region mesh of water body 'waters[0]' "
+                 "overhangs: triangles"));
     // Overlapping the lake: named with both entries; touching it: accepted.
     const std::string lake = R"({"type": "flat", "region": )" + kLakeRegion + "}";
     CHECK_THROWS_WITH(parseWaters("[" + lake + R"(, {"type": "flat", "region": {"box": {"min": [3, -1, 1], "max": [5, 0, 3]}}}])"),

@@ -86,6 +86,82 @@ Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3
     return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
+/// A triangle of a region's mesh in water-frame coordinates (the frame in use: a mesh is given in world coordinates).
+struct FrameTriangle {
+    Eigen::Vector3d corner[3];
+    Eigen::Vector3d normal;  ///< (b − a) × (c − a), outward, not normalised
+    /// +1 when the outward normal has a part along up (the region's top: its lid, a roof), −1 against up (its floor),
+    /// 0 for a wall (no area seen from above).
+    int facing = 0;
+    Eigen::Vector2d flat(int k) const { return Eigen::Vector2d(corner[k].x(), corner[k].z()); }
+    /// Height along up of the triangle's plane above the horizontal point p = (x, z), m.
+    double heightAt(const Eigen::Vector2d& p) const {
+        return corner[0].y() - (normal.x() * (p.x() - corner[0].x()) + normal.z() * (p.y() - corner[0].z())) / normal.y();
+    }
+};
+
+/// Below this |n_y| / |n| a face of a column mesh is a wall: its shadow seen from above has no area.
+constexpr double kWallFace = 1e-9;
+
+FrameTriangle frameTriangle(const btWaterBody& body, const btWaterFrame& frame, std::size_t t) {
+    FrameTriangle f;
+    for (int k = 0; k < 3; ++k) f.corner[k] = frame.toWaterPoint(body.meshVertices[std::size_t(body.meshTriangles[t][std::size_t(k)])]);
+    f.normal = (f.corner[1] - f.corner[0]).cross(f.corner[2] - f.corner[0]);
+    const double n = f.normal.norm();
+    f.facing = f.normal.y() > kWallFace * n ? 1 : (f.normal.y() < -kWallFace * n ? -1 : 0);
+    return f;
+}
+
+/// The triangle's shadow seen from above as a counter-clockwise (x, z) triangle (positive cross2 area).
+std::array<Eigen::Vector2d, 3> shadowOf(const FrameTriangle& f) {
+    std::array<Eigen::Vector2d, 3> t = {f.flat(0), f.flat(1), f.flat(2)};
+    if (cross2(t[1] - t[0], t[2] - t[0]) < 0) std::swap(t[1], t[2]);
+    return t;
+}
+
+/// Horizontal distance from p to the counter-clockwise triangle t, m (0 inside or on it).
+double shadowDistance(const std::array<Eigen::Vector2d, 3>& t, const Eigen::Vector2d& p) {
+    if (orient(t[0], t[1], p) >= 0 && orient(t[1], t[2], p) >= 0 && orient(t[2], t[0], p) >= 0) return 0.0;
+    return std::min({segmentDistance(p, t[0], t[1]), segmentDistance(p, t[1], t[2]), segmentDistance(p, t[2], t[0])});
+}
+
+/// The part of the convex counter-clockwise polygon `poly` left of the line a → b (Sutherland–Hodgman, one edge).
+std::vector<Eigen::Vector2d> keepLeftOf(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& a,
+                                        const Eigen::Vector2d& b) {
+    std::vector<Eigen::Vector2d> out;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Eigen::Vector2d& p = poly[i];
+        const Eigen::Vector2d& q = poly[(i + 1) % poly.size()];
+        const double dp = orient(a, b, p), dq = orient(a, b, q);
+        if (dp >= 0) out.push_back(p);
+        if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
+    }
+    return out;
+}
+
+/// The common part of two counter-clockwise triangles (a convex polygon, counter-clockwise; empty or degenerate when
+/// they only touch).
+std::vector<Eigen::Vector2d> commonShadow(const std::array<Eigen::Vector2d, 3>& a, const std::array<Eigen::Vector2d, 3>& b) {
+    std::vector<Eigen::Vector2d> poly(a.begin(), a.end());
+    for (int k = 0; k < 3 && poly.size() >= 3; ++k) poly = keepLeftOf(poly, b[std::size_t(k)], b[std::size_t((k + 1) % 3)]);
+    return poly;
+}
+
+double polygonArea(const std::vector<Eigen::Vector2d>& poly) {
+    double twice = 0;
+    for (std::size_t i = 0; i < poly.size(); ++i) twice += cross2(poly[i], poly[(i + 1) % poly.size()]);
+    return 0.5 * twice;
+}
+
+bool boxesApart(const std::array<Eigen::Vector2d, 3>& a, const std::array<Eigen::Vector2d, 3>& b) {
+    for (int k = 0; k < 2; ++k) {
+        const double aLo = std::min({a[0][k], a[1][k], a[2][k]}), aHi = std::max({a[0][k], a[1][k], a[2][k]});
+        const double bLo = std::min({b[0][k], b[1][k], b[2][k]}), bHi = std::max({b[0][k], b[1][k], b[2][k]});
+        if (aHi <= bLo || bHi <= aLo) return true;
+    }
+    return false;
+}
+
 /// A convex piece of a region in water-frame coordinates, for the separating-axis test.
 struct ConvexPiece {
     std::vector<Eigen::Vector3d> vertices;
@@ -136,6 +212,43 @@ std::vector<ConvexPiece> convexPieces(const btWaterBody& body, const btWaterFram
         }
         break;
     case btWaterRegionKind::Mesh: {
+        if (body.meshColumns) {
+            // Every vertical line meets the region in one segment, from a floor triangle up to a top triangle: the
+            // region is the union of the columns over the common shadows of a top and a floor triangle, each bounded by
+            // their two planes (convex: a convex shadow between two planes).
+            std::vector<FrameTriangle> tops, floors;
+            for (std::size_t t = 0; t < body.meshTriangles.size(); ++t) {
+                const FrameTriangle f = frameTriangle(body, frame, t);
+                if (f.facing > 0) tops.push_back(f);
+                if (f.facing < 0) floors.push_back(f);
+            }
+            for (const FrameTriangle& top : tops) {
+                const std::array<Eigen::Vector2d, 3> topShadow = shadowOf(top);
+                for (const FrameTriangle& floor : floors) {
+                    const std::array<Eigen::Vector2d, 3> floorShadow = shadowOf(floor);
+                    if (boxesApart(topShadow, floorShadow)) continue;
+                    const std::vector<Eigen::Vector2d> cell = commonShadow(topShadow, floorShadow);
+                    if (cell.size() < 3 || !(polygonArea(cell) > 0)) continue;
+                    ConvexPiece piece;
+                    for (std::size_t k = 0; k < cell.size(); ++k) {
+                        const Eigen::Vector2d& a = cell[k];
+                        const Eigen::Vector2d& b = cell[(k + 1) % cell.size()];
+                        piece.vertices.emplace_back(a.x(), floor.heightAt(a), a.y());
+                        piece.vertices.emplace_back(a.x(), top.heightAt(a), a.y());
+                        addDirection(piece.normals, Eigen::Vector3d(b.y() - a.y(), 0, -(b.x() - a.x())));
+                        addDirection(piece.edges, Eigen::Vector3d(b.x() - a.x(), floor.heightAt(b) - floor.heightAt(a),
+                                                                  b.y() - a.y()));
+                        addDirection(piece.edges, Eigen::Vector3d(b.x() - a.x(), top.heightAt(b) - top.heightAt(a),
+                                                                  b.y() - a.y()));
+                    }
+                    addDirection(piece.normals, top.normal);
+                    addDirection(piece.normals, floor.normal);
+                    addDirection(piece.edges, Eigen::Vector3d::UnitY());
+                    pieces.push_back(piece);
+                }
+            }
+            break;
+        }
         ConvexPiece piece;
         for (const Eigen::Vector3d& v : body.meshVertices) piece.vertices.push_back(frame.toWaterPoint(v));
         for (const Eigen::Vector3d& n : body.meshNormals) addDirection(piece.normals, frame.toWaterVector(n));
@@ -230,6 +343,8 @@ void btWaterBody::setRegion(const btWaterBodyInfo& info, const btWaterFrame& fra
     meshTriangles.clear();
     meshNormals.clear();
     meshOffsets.clear();
+    meshNeighbours.clear();
+    meshColumns = false;
     switch (kind) {
     case btWaterRegionKind::Box: {
         regionMin = Eigen::Vector3d(double(info.regionMin.x()), double(info.regionMin.y()), double(info.regionMin.z()));
@@ -380,20 +495,16 @@ void btWaterBody::setRegion(const btWaterBodyInfo& info, const btWaterFrame& fra
         if (!(volume6 > 0))
             throw std::invalid_argument(who + "meshTriangles: the triangles face inward (the mesh's volume is negative): "
                                               "give them counter-clockwise seen from outside");
-        for (std::size_t t = 0; t < meshTriangles.size(); ++t) {
+        // Convex with few enough face planes: one piece clipped by its walls. Otherwise the mesh is taken as columns
+        // along up (a stepped pool, an L-shaped lock, a lake bed): it must then meet every vertical line once at most.
+        meshColumns = false;
+        for (std::size_t t = 0; t < meshTriangles.size() && !meshColumns; ++t) {
             const Eigen::Vector3d &a = meshVertices[std::size_t(meshTriangles[t][0])],
                                   &b = meshVertices[std::size_t(meshTriangles[t][1])],
                                   &c = meshVertices[std::size_t(meshTriangles[t][2])];
             const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
             const double offset = normal.dot(a);
-            for (std::size_t i = 0; i < nv; ++i) {
-                const double out = normal.dot(meshVertices[i]) - offset;
-                if (out > tolerance)
-                    throw std::invalid_argument(who + "region mesh of water body '" + name + "' is not convex: vertex " +
-                                                std::to_string(i) + " " + cornerText(meshVertices[i]) + " is " +
-                                                num(out) + " m outside the plane of triangle " + std::to_string(t) +
-                                                " (only convex meshes are supported as regions)");
-            }
+            for (std::size_t i = 0; i < nv && !meshColumns; ++i) meshColumns = normal.dot(meshVertices[i]) - offset > tolerance;
             bool known = false;
             for (std::size_t k = 0; k < meshNormals.size() && !known; ++k)
                 known = meshNormals[k].dot(normal) > 1.0 - 1e-9 && std::abs(meshOffsets[k] - offset) <= tolerance;
@@ -402,10 +513,39 @@ void btWaterBody::setRegion(const btWaterBodyInfo& info, const btWaterFrame& fra
                 meshOffsets.push_back(offset);
             }
         }
-        if (meshNormals.size() > std::size_t(buoyancy::WaterRegion::kMaxPlanes))
-            throw std::invalid_argument(who + "meshTriangles: the mesh has " + std::to_string(meshNormals.size()) +
-                                        " distinct face planes, at most " +
-                                        std::to_string(buoyancy::WaterRegion::kMaxPlanes) + " are supported");
+        if (meshNormals.size() > std::size_t(buoyancy::WaterRegion::kMaxPlanes)) meshColumns = true;
+        if (!meshColumns) return;
+        meshNormals.clear();
+        meshOffsets.clear();
+        // Each edge's other triangle (the edge map holds each directed edge once).
+        std::map<std::pair<int, int>, int> owner;
+        for (std::size_t t = 0; t < meshTriangles.size(); ++t)
+            for (int k = 0; k < 3; ++k) owner[{meshTriangles[t][std::size_t(k)], meshTriangles[t][std::size_t((k + 1) % 3)]}] = int(t);
+        meshNeighbours.assign(meshTriangles.size(), {-1, -1, -1});
+        for (std::size_t t = 0; t < meshTriangles.size(); ++t)
+            for (int k = 0; k < 3; ++k)
+                meshNeighbours[t][std::size_t(k)] =
+                    owner.at({meshTriangles[t][std::size_t((k + 1) % 3)], meshTriangles[t][std::size_t(k)]});
+        // No overhang: the shadows of two top triangles seen from above do not overlap (a vertical line then meets
+        // one top and, the mesh being closed, one floor).
+        std::vector<std::pair<std::size_t, std::array<Eigen::Vector2d, 3>>> tops;
+        for (std::size_t t = 0; t < meshTriangles.size(); ++t) {
+            const FrameTriangle f = frameTriangle(*this, frame, t);
+            if (f.facing > 0) tops.emplace_back(t, shadowOf(f));
+        }
+        const double areaTolerance = 1e-9 * (1.0 + size * size);
+        for (std::size_t i = 0; i < tops.size(); ++i)
+            for (std::size_t j = i + 1; j < tops.size(); ++j) {
+                if (boxesApart(tops[i].second, tops[j].second)) continue;
+                const double common = polygonArea(commonShadow(tops[i].second, tops[j].second));
+                if (common > areaTolerance)
+                    throw std::invalid_argument(
+                        who + "meshTriangles: the region mesh of water body '" + name + "' overhangs: triangles " +
+                        std::to_string(tops[i].first) + " and " + std::to_string(tops[j].first) +
+                        " both face up and lie one above the other (" + num(common) +
+                        " m^2 in common seen from above); a mesh that is not convex must meet every vertical line in "
+                        "one segment at most (split it into water bodies that do)");
+            }
         return;
     }
     }
@@ -423,7 +563,21 @@ double btWaterBody::distanceTo(const btWaterFrame& frame, const Eigen::Vector3d&
     }
     case btWaterRegionKind::Mesh: {
         bool inside = true;
-        for (std::size_t k = 0; k < meshNormals.size() && inside; ++k) inside = meshNormals[k].dot(point) <= meshOffsets[k];
+        if (meshColumns) {
+            // Inside: under a top triangle and over a floor triangle of the vertical line through the point.
+            const Eigen::Vector3d q = frame.toWaterPoint(point);
+            const Eigen::Vector2d p(q.x(), q.z());
+            bool under = false, over = false;
+            for (std::size_t t = 0; t < meshTriangles.size() && !(under && over); ++t) {
+                const FrameTriangle f = frameTriangle(*this, frame, t);
+                if (f.facing == 0 || shadowDistance(shadowOf(f), p) > 0) continue;
+                if (f.facing > 0) under = under || q.y() <= f.heightAt(p);
+                else over = over || q.y() >= f.heightAt(p);
+            }
+            inside = under && over;
+        } else {
+            for (std::size_t k = 0; k < meshNormals.size() && inside; ++k) inside = meshNormals[k].dot(point) <= meshOffsets[k];
+        }
         if (inside) return 0.0;
         double d = std::numeric_limits<double>::infinity();
         for (const std::array<int, 3>& t : meshTriangles)
@@ -454,6 +608,16 @@ bool btWaterBody::inColumn(const btWaterFrame& frame, const Eigen::Vector3d& poi
         return q.y() >= bottom - slack && footprintDistance(footprint, Eigen::Vector2d(q.x(), q.z())) <= slack;
     }
     case btWaterRegionKind::Mesh:
+        if (meshColumns) {
+            // Over a floor triangle whose shadow holds the point (within slack).
+            const Eigen::Vector3d q = frame.toWaterPoint(point);
+            const Eigen::Vector2d p(q.x(), q.z());
+            for (std::size_t t = 0; t < meshTriangles.size(); ++t) {
+                const FrameTriangle f = frameTriangle(*this, frame, t);
+                if (f.facing < 0 && shadowDistance(shadowOf(f), p) <= slack && q.y() >= f.heightAt(p) - slack) return true;
+            }
+            return false;
+        }
         for (std::size_t k = 0; k < meshNormals.size(); ++k)
             if (!isLid(frame, meshNormals[k]) && !(meshNormals[k].dot(point) <= meshOffsets[k] + slack)) return false;
         return true;
@@ -474,6 +638,15 @@ bool btWaterBody::withinSides(const btWaterFrame& frame, const Eigen::Vector3d& 
         return footprintDistance(footprint, Eigen::Vector2d(q.x(), q.z())) <= slack;
     }
     case btWaterRegionKind::Mesh:
+        if (meshColumns) {
+            // Within the shadow of a top triangle (the footprint seen from above).
+            const Eigen::Vector3d q = frame.toWaterPoint(point);
+            for (std::size_t t = 0; t < meshTriangles.size(); ++t) {
+                const FrameTriangle f = frameTriangle(*this, frame, t);
+                if (f.facing > 0 && shadowDistance(shadowOf(f), Eigen::Vector2d(q.x(), q.z())) <= slack) return true;
+            }
+            return false;
+        }
         for (std::size_t k = 0; k < meshNormals.size(); ++k)
             if (!isLid(frame, meshNormals[k]) && !isFloor(frame, meshNormals[k]) &&
                 !(meshNormals[k].dot(point) <= meshOffsets[k] + slack))
@@ -500,6 +673,24 @@ bool btWaterBody::sphereWithinSides(const btWaterFrame& frame, const Eigen::Vect
         return insidePolygon(footprint, p) && boundaryDistance(footprint, p) >= radius;
     }
     case btWaterRegionKind::Mesh:
+        if (meshColumns) {
+            // The centre in the footprint, and the footprint's outline (the top triangles' edges whose other triangle
+            // is not a top) at least a radius away.
+            const Eigen::Vector3d q = frame.toWaterPoint(centre);
+            const Eigen::Vector2d p(q.x(), q.z());
+            bool inFootprint = false;
+            for (std::size_t t = 0; t < meshTriangles.size(); ++t) {
+                const FrameTriangle f = frameTriangle(*this, frame, t);
+                if (f.facing <= 0) continue;
+                inFootprint = inFootprint || shadowDistance(shadowOf(f), p) == 0.0;
+                for (int k = 0; k < 3; ++k) {
+                    const std::size_t other = std::size_t(meshNeighbours[t][std::size_t(k)]);
+                    if (frameTriangle(*this, frame, other).facing > 0) continue;
+                    if (!(segmentDistance(p, f.flat(k), f.flat((k + 1) % 3)) >= radius)) return false;
+                }
+            }
+            return inFootprint;
+        }
         for (std::size_t k = 0; k < meshNormals.size(); ++k)
             if (!isLid(frame, meshNormals[k]) && !isFloor(frame, meshNormals[k]) &&
                 !(meshNormals[k].dot(centre) + radius <= meshOffsets[k]))
@@ -547,6 +738,25 @@ void btWaterBody::appendWaterRegions(const btWaterFrame& frame, std::vector<buoy
         }
         return;
     case btWaterRegionKind::Mesh:
+        if (meshColumns) {
+            // One vertical prism per top triangle's shadow (they tile the footprint): its three sides.
+            for (std::size_t t = 0; t < meshTriangles.size(); ++t) {
+                const FrameTriangle f = frameTriangle(*this, frame, t);
+                if (f.facing <= 0) continue;
+                const std::array<Eigen::Vector2d, 3> shadow = shadowOf(f);
+                region.planeCount = 0;
+                for (int k = 0; k < 3; ++k) {
+                    const Eigen::Vector2d& a = shadow[std::size_t(k)];
+                    const Eigen::Vector2d& b = shadow[std::size_t((k + 1) % 3)];
+                    const Eigen::Vector3d normal = Eigen::Vector3d(b.y() - a.y(), 0, -(b.x() - a.x())).normalized();
+                    const int i = region.planeCount++;
+                    region.normal[i] = normal;
+                    region.offset[i] = normal.x() * a.x() + normal.z() * a.y();
+                }
+                out.push_back(region);
+            }
+            return;
+        }
         // The tank's walls: every face plane but its flat lid and floor.
         for (std::size_t k = 0; k < meshNormals.size(); ++k)
             if (!isLid(frame, meshNormals[k]) && !isFloor(frame, meshNormals[k]))

@@ -10,7 +10,9 @@
 /// - Polygon: a simple polygon footprint in the water frame's horizontal axes (x, z of btWaterFrame), extruded along
 ///   up from a bottom height to a top height (a lake with an irregular shore; non-convex footprints are cut into
 ///   triangles);
-/// - Mesh: a closed, outward-oriented, convex triangle mesh of the world (a tank).
+/// - Mesh: a closed, outward-oriented triangle mesh of the world (a tank, a stepped pool, an L-shaped lock, a lake
+///   bed under a flat lid). A convex one with at most 32 face planes is clipped by its walls; any other is taken as
+///   columns along up and must meet every vertical line in one segment at most (no overhang).
 ///
 /// The water of a body fills its region from the region's bottom up to the surface: the region's sides and bottom
 /// bound it, its top should be at or above the surface's highest point (the surface is not cut off at the top).
@@ -34,7 +36,7 @@ struct WaterRegion;
 enum class btWaterRegionKind {
     Box,      ///< axis-aligned box of the world: btWaterBodyInfo::regionMin, regionMax
     Polygon,  ///< footprint polygon extruded along up: btWaterBodyInfo::footprint, bottom, top
-    Mesh,     ///< closed convex triangle mesh: btWaterBodyInfo::meshVertices, meshTriangles
+    Mesh,     ///< closed triangle mesh: btWaterBodyInfo::meshVertices, meshTriangles
 };
 
 /// What a water body is made of (btBuoyancyWorld::addWaterBody copies it).
@@ -66,8 +68,10 @@ struct btWaterBodyInfo {
     /// Mesh: the tank's vertices, world, m (finite).
     std::vector<btVector3> meshVertices = {};
     /// Mesh: three indices into meshVertices per triangle, counter-clockwise seen from outside (outward normals); the
-    /// mesh must be closed (every edge shared by exactly two triangles, in opposite directions) and convex, with at
-    /// most 32 distinct face planes (coplanar triangles share one).
+    /// mesh must be closed (every edge shared by exactly two triangles, in opposite directions). A convex mesh with at
+    /// most 32 distinct face planes (coplanar triangles share one) bounds the water by its walls' planes; any other
+    /// mesh must meet every vertical line (along the water frame's up) in one segment at most, and bounds the water by
+    /// its footprint seen from above (the shadows of its upward-facing triangles), from its floor up.
     std::vector<int> meshTriangles = {};
 };
 
@@ -93,11 +97,16 @@ struct btWaterBody {
     std::vector<std::array<int, 3>> meshTriangles;   ///< Mesh: triangles, outward
     std::vector<Eigen::Vector3d> meshNormals;        ///< Mesh: the distinct face planes' outward unit normals, world
     std::vector<double> meshOffsets;                 ///< Mesh: the region is meshNormals[k] · p ≤ meshOffsets[k], m
+    /// Mesh: true when the mesh is not convex or has more than 32 face planes: the region is then the columns along
+    /// up between its floor triangles and its top triangles (meshNormals and meshOffsets are empty).
+    bool meshColumns = false;
+    /// Mesh with columns: for each triangle, the triangle across each of its edges (edge k runs from corner k to k + 1).
+    std::vector<std::array<int, 3>> meshNeighbours;
 
     /// Set the region from `info` (kind, corners, footprint or mesh), checking it; the frame gives up for a mesh's
     /// top and bottom faces and places a footprint in the world (bounding box).
     /// @throws std::invalid_argument starting with `who` and naming the field and the problem (a degenerate or
-    ///         self-intersecting footprint, bottom >= top, an open, inward or non-convex mesh)
+    ///         self-intersecting footprint, bottom >= top, an open or inward mesh, a non-convex mesh that overhangs)
     void setRegion(const btWaterBodyInfo& info, const btWaterFrame& frame, const std::string& who);
     /// Distance from `point` (world, m) to the region, m (0 inside or on it).
     double distanceTo(const btWaterFrame& frame, const Eigen::Vector3d& point) const;
@@ -110,8 +119,8 @@ struct btWaterBody {
     /// True when the sphere (`centre`, world, m; `radius`, m) is within the region's sides (as withinSides).
     bool sphereWithinSides(const btWaterFrame& frame, const Eigen::Vector3d& centre, double radius) const;
     /// Append the region's convex pieces but their tops and bottoms, as half-spaces of the water frame, each with the
-    /// body's water and density (a box, a mesh: one piece; a footprint: one per triangle). Allocates only when `out`
-    /// grows.
+    /// body's water and density (a box, a convex mesh: one piece; a footprint: one per triangle; a mesh taken as
+    /// columns: one vertical prism per upward-facing triangle). Allocates only when `out` grows.
     void appendWaterRegions(const btWaterFrame& frame, std::vector<buoyancy::WaterRegion>& out) const;
     /// True when the regions' interiors overlap (regions sharing only a face, an edge or a corner do not): an exact
     /// separating-axis test between their convex pieces, within a tolerance of 1e-9 of their size.
