@@ -592,6 +592,34 @@ TEST_CASE("water bodies: an L-shaped lock given as a mesh gets what the same L a
 const Footprint kStepSection = {{0, -3}, {4, -3}, {4, -1}, {8, -1}, {8, 1}, {0, 1}};
 const std::vector<std::array<int, 3>> kStepCut = {{0, 1, 2}, {0, 2, 5}, {2, 3, 4}, {2, 4, 5}};
 
+TEST_CASE("water bodies in a Z-up world: a stepped pool mesh is columns along +z", "[bullet][waters]") {
+    // The stepped pool's section given in the world's (x, z), swept along y: with gravity −z its floors are at
+    // z = −3 (x < 4) and z = −1 (x > 4), its lid at z = 1.
+    const btFlatWaterSurface water(0.0);
+    WaterBodiesWorld w(btVector3(0, 0, btScalar(-kGravity)));
+    REQUIRE(w.buoyancy.addWaterBody(sweptMesh("pool", &water, kStepSection, kStepCut, 1, 0.0, 4.0)) == 0);
+    CHECK(w.buoyancy.getWaterBodies()[0].meshColumns);
+    const auto at = [&](double x, double y, double z) {
+        return w.buoyancy.queryWater(btVector3(btScalar(x), btScalar(y), btScalar(z)));
+    };
+    CHECK(at(2, 2, -2.5).waterBody == 0);
+    CHECK(double(at(2, 2, -2.5).depth) == Approx(2.5));
+    CHECK(at(6, 2, -0.5).waterBody == 0);
+    CHECK(at(6, 2, -2.0).waterBody == -1);
+    CHECK(at(9, 2, -0.5).waterBody == -1);
+    // A crate of density 600 kg/m³ (0.5 m along z) in the shallow end floats with draft 0.3 m (Archimedes).
+    auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(1.0, 1.0, 0.5));
+    btBuoyantBodySettings settings;
+    settings.density = 600.0;
+    w.bodies.push_back(std::make_unique<btBuoyantBody>(shape, settings,
+                                                       btTransform(btQuaternion::getIdentity(), btVector3(6, 2, 0.25f))));
+    w.world.addRigidBody(w.bodies.back()->getRigidBody());
+    w.actions.push_back(std::make_unique<btBuoyancyAction>(*w.bodies.back(), &w.buoyancy));
+    w.world.addAction(w.actions.back().get());
+    w.run(8.0);
+    CHECK(-(double(w.bodies.back()->getRigidBody()->getCenterOfMassPosition().z()) - 0.25) == Approx(0.3).margin(2e-3));
+}
+
 TEST_CASE("water bodies: a stepped pool mesh holds water down to each end's floor and a crate floats at its draft",
           "[bullet][waters]") {
     const btFlatWaterSurface water(0.0);
