@@ -39,10 +39,17 @@ endif()
 # library needs no file at run time (Bullet3's *Kernels.h style). Always called; without OpenCL it does nothing
 # but define BULLET_BUOYANCY_HAVE_OPENCL=0.
 function(bullet_buoyancy_enable_opencl target)
+  # The backend's files (bullet/btOpenClBuoyancyBackend.cpp and bullet/opencl/) or, without OpenCL, its stub
+  # (bullet/btOpenClBuoyancyBackendStub.cpp): the other is left out of the build.
+  set(_bb_ocl_dir ${PROJECT_SOURCE_DIR}/plugin/BulletBuoyancy/bullet)
+  file(GLOB _bb_ocl_backend CONFIGURE_DEPENDS ${_bb_ocl_dir}/opencl/*.cpp)
+  list(APPEND _bb_ocl_backend ${_bb_ocl_dir}/btOpenClBuoyancyBackend.cpp)
   if(NOT BULLET_BUOYANCY_WITH_OPENCL)
+    set_source_files_properties(${_bb_ocl_backend} PROPERTIES HEADER_FILE_ONLY ON)
     target_compile_definitions(${target} PRIVATE BULLET_BUOYANCY_HAVE_OPENCL=0)
     return()
   endif()
+  set_source_files_properties(${_bb_ocl_dir}/btOpenClBuoyancyBackendStub.cpp PROPERTIES HEADER_FILE_ONLY ON)
   # In dependency order (each file uses the ones before it); every kernels/*.cl must be listed.
   set(_cl ${PROJECT_SOURCE_DIR}/kernels/water.cl ${PROJECT_SOURCE_DIR}/kernels/samples.cl
           ${PROJECT_SOURCE_DIR}/kernels/rebake.cl)
