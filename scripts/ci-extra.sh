@@ -76,7 +76,7 @@ echo "== FPE tests (trap invalid, divide-by-zero, overflow) on the double Releas
 # Tests that feed NaN on purpose without masking the traps (a NaN comparison raises FE_INVALID even where
 # the code handles it) are left out; tests/reliability masks them with ScopedFpTrapsOff instead.
 nan_on_purpose='hydrostatics: bad input gives clear exceptions|bad input: scene files name the file and the key'
-(cd build-double && BULLET_BUOYANCY_TRAP_FP=1 ctest -L 'integrals|bake|bullet|accuracy|water|reliability' \
+(cd build-double && BULLET_BUOYANCY_TRAP_FP=1 ctest -L 'integrals|bake|bullet|scenarios|accuracy|water|reliability' \
    -E "$nan_on_purpose" --output-on-failure -j"$jobs" --timeout 600) || failed+=("FPE tests")
 lap "FPE tests"
 

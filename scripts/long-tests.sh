@@ -3,7 +3,7 @@
 #   bash scripts/long-tests.sh            # float then double
 #   PRECISIONS=double bash scripts/long-tests.sh
 # What runs (tests tagged [long]): the 1,000-body × 10^5-substep soak in Gerstner waves with water graphs
-# (tests/reliability/SoakTest.cpp), the 3000-case property test (tests/bullet/HardCasesTest.cpp). Each
+# (tests/reliability/SoakTest.cpp), the 3000-case property test (tests/scenarios/HardCasesTest.cpp). Each
 # prints its numbers (ctest --verbose); the last results are in docs/development.md.
 # Then long fuzzing: scripts/fuzz-run.sh with FUZZ_SECONDS per target (default 900; FUZZ_SECONDS=0 skips it).
 # (The fuzz build also has one CTest test per target labelled `long`: `ctest -L long` in build-fuzz.)

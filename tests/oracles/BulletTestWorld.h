@@ -42,7 +42,7 @@ public:
     /// A static ground plane y = h: friction 0.8, with rolling (0.1) and spinning (0.05) friction like the
     /// scene runner's seabed. Bullet 3.24 caps a contact's rolling-friction impulse at the coefficient itself per
     /// substep, whatever the load, so it slows light round bodies only; and against a plane a heavy polygonal
-    /// prism at 30 Hz can keep rolling (Bullet's convex-vs-plane contact feeds it: tests/bullet/HardCasesTest.cpp,
+    /// prism at 30 Hz can keep rolling (Bullet's convex-vs-plane contact feeds it: tests/scenarios/HardCasesTest.cpp,
     /// PolyhedralSeabed, has the measurements and the polyhedral seabed that stops it).
     void addGround(double h);
 

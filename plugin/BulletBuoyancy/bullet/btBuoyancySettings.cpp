@@ -173,7 +173,7 @@ struct TemporalModelPoint {
 constexpr TemporalModelPoint kTemporalModel[] = {{8.0 / 240.0, 0.21}, {12.0 / 240.0, 0.24}, {16.0 / 240.0, 0.28}};
 /// s; measured (temporal_lod.csv, 1,000 boats in scaling.csv): at 1/30 s with the tolerance at 0.01 % the force
 /// error's mean and 99th percentile stay at exact evaluation's; an undamped bobbing box keeps its energy as exact
-/// evaluation does (tests/bullet/DynamicsTest.cpp, "energy is conserved with drag off"), an undamped sphere its
+/// evaluation does (tests/scenarios/DynamicsTest.cpp, "energy is conserved with drag off"), an undamped sphere its
 /// amplitude within 0.1 % a minute (tests/bullet/TemporalLodTest.cpp).
 constexpr double kDefaultEvaluationPeriod = 1.0 / 30.0;
 }  // namespace
