@@ -239,12 +239,19 @@ TEST_CASE("threads: flooding and time-varying mass give the sequential order's r
     const auto sequential = runFleet(o, frames);
     CHECK(batched == sequential);
     CHECK(batchedOne == sequential);
-    // Water got in (the flooding is part of what is compared).
+    // Water got in (the flooding is part of what is compared), and the flooding actions flowed in the world's batch
+    // (8 of them, every third body's: on 3 threads) or at their own turns (batching off).
     Fleet f(o);
     f.run(frames);
     double water = 0;
     for (const auto& fl : f.floods) water += fl->getWaterVolume();
     CHECK(water > 0.01);
+    CHECK(f.water.getLastFloodingBatchSize() == 0);
+    o.batching = true;
+    o.threads = 3;
+    Fleet g(o);
+    g.run(1);
+    CHECK(g.water.getLastFloodingBatchSize() == 8);
 }
 
 TEST_CASE("threads: an action that writes a body, in the documented order and between buoyancy actions",

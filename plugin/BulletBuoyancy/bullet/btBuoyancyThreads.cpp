@@ -4,6 +4,7 @@
 
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
+#include <BulletBuoyancy/bullet/btFloodingAction.h>
 
 #include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 #include <LinearMath/btThreads.h>
@@ -60,22 +61,54 @@ private:
     unsigned m_saved;
 };
 
-/// The batch as a body for Bullet's task scheduler.
-struct BatchBody : btIParallelForBody {
-    btBuoyancyAction* const* actions;
-    const btCollisionWorld* world;
-    double dt;
-    unsigned csr;
-    void forLoop(int begin, int end) const override {
-        FpState fp(csr);
-        for (int i = begin; i < end; ++i) btBuoyancyWorldEvaluate(*actions[i], world, dt);
-    }
-};
-
 /// Bullet's task scheduler, when the Bullet in use has one with more than one thread.
 btITaskScheduler* bulletScheduler() {
     btITaskScheduler* scheduler = btGetTaskScheduler();
     return scheduler && scheduler->getNumThreads() > 1 ? scheduler : nullptr;
+}
+
+/// A loop body for Bullet's task scheduler, with the caller's floating-point control state.
+template <class Item>
+struct SchedulerBody : btIParallelForBody {
+    const Item* item = nullptr;
+    unsigned csr = 0;
+    void forLoop(int begin, int end) const override {
+        FpState fp(csr);
+        for (int i = begin; i < end; ++i) (*item)(i);
+    }
+};
+
+/// item(0) … item(n − 1), each independent of the others, on Bullet's task scheduler when it has one, else on up to
+/// `threads` OpenMP threads (one thread below 4 items: an OpenMP worker spin-waiting between substeps would only take
+/// the core Bullet's own step runs on), in chunks of up to 16 handed out as threads free up (an item costs from a few
+/// to tens of µs, so static halves leave one thread waiting). Every worker runs with the caller's floating-point
+/// control state `csr`.
+template <class Item>
+void parallelOver(int n, int threads, unsigned csr, const Item& item) {
+    if (btITaskScheduler* scheduler = bulletScheduler()) {
+        SchedulerBody<Item> body;
+        body.item = &item;
+        body.csr = csr;
+        scheduler->parallelFor(0, n, std::max(1, std::min(16, n / (8 * scheduler->getNumThreads()))), body);
+        return;
+    }
+#ifdef BULLET_BUOYANCY_HAS_OPENMP
+    threads = std::min(threads, n);
+    if (threads > 1 && n >= 4) {
+        const int chunk = std::max(1, std::min(16, n / (8 * threads)));
+#pragma omp parallel num_threads(threads)
+        {
+            FpState fp(csr);
+#pragma omp for schedule(dynamic, chunk)
+            for (int i = 0; i < n; ++i) item(i);
+        }
+        return;
+    }
+#else
+    (void)threads;
+    (void)csr;
+#endif
+    for (int i = 0; i < n; ++i) item(i);
 }
 
 }  // namespace
@@ -132,34 +165,45 @@ void btBuoyancyWorld::evaluateBatch(const btCollisionWorld* from, double dt) {
         explicit InBatch(std::atomic<bool>& f) : flag(f) { flag.store(true); }
         ~InBatch() { flag.store(false); }
     } inBatch(m_inBatch);
-    const unsigned csr = FpState::current();
+    // The results do not depend on which thread takes which body (everything a body evaluation writes is the body's
+    // own: its action's state, caches and scratch).
     btBuoyancyAction* const* batch = m_batch.data();
-    if (btITaskScheduler* scheduler = bulletScheduler()) {
-        BatchBody body;
-        body.actions = batch;
-        body.world = from;
-        body.dt = dt;
-        body.csr = csr;
-        scheduler->parallelFor(0, n, std::max(1, std::min(16, n / (8 * scheduler->getNumThreads()))), body);
-        return;
-    }
-#ifdef BULLET_BUOYANCY_HAS_OPENMP
-    // Below 4 bodies one thread: an OpenMP worker spin-waiting between substeps would only take the core Bullet's
-    // own step runs on. Chunks of up to 16 bodies are handed out as threads free up: a body costs tens of µs at an
-    // exact evaluation and a few µs when the temporal level of detail predicts it, so static halves leave one thread
-    // waiting. The results do not depend on which thread takes which body (everything a body evaluation writes is
-    // the body's own: its action's state, caches and scratch).
-    const int threads = std::min(getThreads(), n);
-    if (threads > 1 && n >= 4) {
-        const int chunk = std::max(1, std::min(16, n / (8 * threads)));
-#pragma omp parallel num_threads(threads)
-        {
-            FpState fp(csr);
-#pragma omp for schedule(dynamic, chunk)
-            for (int i = 0; i < n; ++i) btBuoyancyWorldEvaluate(*batch[i], from, dt);
+    parallelOver(n, getThreads(), FpState::current(),
+                 [batch, from, dt](int i) { btBuoyancyWorldEvaluate(*batch[i], from, dt); });
+}
+
+void btBuoyancyWorld::evaluateFloodingBatch(const btCollisionWorld* from, double dt) {
+    // Off, or without a discrete dynamics world at hand (actions stepped by hand): each flooding action flows at its
+    // own turn.
+    const auto* world = m_batching ? dynamic_cast<const btDiscreteDynamicsWorld*>(from) : nullptr;
+    m_lastFloodingBatchSize = 0;
+    if (!world || m_floodingActions.empty()) return;
+    const btAlignedObjectArray<btActionInterface*>& actions = WorldActions::of(*world);
+    const std::size_t count = std::size_t(std::max(actions.size(), 0));
+    const btActionInterface* const* seen = count > 0 ? &actions[0] : nullptr;
+    if (m_floodingBatchDirty || m_seenFloodingWorldActions.size() != count ||
+        !std::equal(m_seenFloodingWorldActions.begin(), m_seenFloodingWorldActions.end(), seen)) {
+        // The registered flooding actions in the Bullet world's order; one added to it twice flows at each of its
+        // turns, as it would unbatched, so it is left out.
+        m_seenFloodingWorldActions.assign(seen, seen + count);
+        m_floodingBatch.clear();
+        for (const btActionInterface* a : m_seenFloodingWorldActions) {
+            const auto mine = std::find(m_floodingActions.begin(), m_floodingActions.end(), a);
+            if (mine == m_floodingActions.end()) continue;
+            if (std::count(m_seenFloodingWorldActions.begin(), m_seenFloodingWorldActions.end(), a) != 1) continue;
+            m_floodingBatch.push_back(*mine);
         }
-        return;
+        m_floodingBatchDirty = false;
     }
-#endif
-    for (int i = 0; i < n; ++i) btBuoyancyWorldEvaluate(*batch[i], from, dt);
+    const int n = int(m_floodingBatch.size());
+    m_lastFloodingBatchSize = m_floodingBatch.size();
+    if (n == 0) return;
+    struct InBatch {
+        std::atomic<bool>& flag;
+        explicit InBatch(std::atomic<bool>& f) : flag(f) { flag.store(true); }
+        ~InBatch() { flag.store(false); }
+    } inBatch(m_inBatch);
+    // Each flow writes only its own action's water graph and scratch (the body is written at the action's turn).
+    btFloodingAction* const* batch = m_floodingBatch.data();
+    parallelOver(n, getThreads(), FpState::current(), [batch, dt](int i) { batch[i]->flowForBatch(dt); });
 }

@@ -268,6 +268,27 @@ void btBuoyancyWorld::unregisterAction(btBuoyancyAction* action) {
     m_actions.erase(std::remove(m_actions.begin(), m_actions.end(), action), m_actions.end());
 }
 
+void btBuoyancyWorld::registerFloodingAction(btFloodingAction* action) {
+    if (m_dispatching || m_inBatch.load())
+        throw std::logic_error("btFloodingAction: created while its btBuoyancyWorld steps (inside stepSimulation); "
+                               "create and destroy actions between steps");
+    m_floodingBatchDirty = true;
+    m_floodingActions.push_back(action);
+}
+
+void btBuoyancyWorld::unregisterFloodingAction(btFloodingAction* action) {
+    if (m_inBatch.load()) {
+        // Called from an action's destructor (noexcept): refused with a message, never a data race.
+        std::fprintf(stderr, "btFloodingAction: destroyed while its btBuoyancyWorld moves the water of a substep in "
+                             "parallel; create and destroy actions between steps\n");
+        std::abort();
+    }
+    m_floodingBatchDirty = true;
+    m_floodingBatch.erase(std::remove(m_floodingBatch.begin(), m_floodingBatch.end(), action), m_floodingBatch.end());
+    m_floodingActions.erase(std::remove(m_floodingActions.begin(), m_floodingActions.end(), action),
+                            m_floodingActions.end());
+}
+
 // ---- Events and queries for game logic (btBuoyancyEvents.h) ----
 
 void btBuoyancyWorld::addEventListener(btBuoyancyEventListener* listener) {

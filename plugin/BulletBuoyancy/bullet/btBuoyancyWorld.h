@@ -29,6 +29,7 @@
 
 class btWaterSurface;
 class btBuoyancyAction;
+class btFloodingAction;
 class btBuoyancyDeviceBackend;
 class btActionInterface;
 class btCollisionWorld;
@@ -228,6 +229,9 @@ public:
     bool getBatching() const { return m_batching; }
     /// Bodies evaluated in the last batch (0 when the last substep ran per action).
     int getLastBatchSize() const { return int(m_lastBatchSize); }
+    /// Flooding actions (btFloodingAction) whose water moved in the last flooding batch (0 when they flowed per
+    /// action: batching off, or no discrete dynamics world stepping them).
+    int getLastFloodingBatchSize() const { return int(m_lastFloodingBatchSize); }
     ///@}
 
     ///@name Events and queries for game logic (btBuoyancyEvents.h, docs/integration.md "Events and queries")
@@ -277,6 +281,12 @@ public:
     /// (its turn among the bodies for the temporal level of detail; deterministic for a given scene).
     std::uint64_t registerAction(btBuoyancyAction* action);
     void unregisterAction(btBuoyancyAction* action);
+    /// Internal: flooding actions register and unregister themselves (their batch, evaluateFloodingBatch).
+    void registerFloodingAction(btFloodingAction* action);
+    void unregisterFloodingAction(btFloodingAction* action);
+    /// Internal (btFloodingAction::updateAction): with batching on, move the water of every registered flooding
+    /// action that is in `from`'s action array (once each) for a substep of dt seconds, across the threads.
+    void evaluateFloodingBatch(const btCollisionWorld* from, double dt);
 
 private:
     friend class btBuoyancyImmediate;  // sets the gravity vector of its private context
@@ -323,6 +333,13 @@ private:
     bool m_batchDirty = true;         ///< the registered actions changed since m_batch was built
     std::vector<const btActionInterface*> m_seenWorldActions; ///< the Bullet world's action array m_batch was built from
     std::vector<btBuoyancyAction*> m_batch; ///< registered actions in the Bullet world, in its order
+    std::vector<btFloodingAction*> m_floodingActions;  ///< registered flooding actions
+    bool m_floodingBatchDirty = true;  ///< the registered flooding actions changed since m_floodingBatch was built
+    /// The Bullet world's action array m_floodingBatch was built from.
+    std::vector<const btActionInterface*> m_seenFloodingWorldActions;
+    /// Registered flooding actions in the Bullet world (each there once), in its order.
+    std::vector<btFloodingAction*> m_floodingBatch;
+    std::size_t m_lastFloodingBatchSize = 0;  ///< flooding actions in the last flooding batch
     std::size_t m_lastBatchSize = 0;  ///< bodies evaluated in the last batch
     ///@}
 };

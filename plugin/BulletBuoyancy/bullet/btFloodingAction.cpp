@@ -22,7 +22,10 @@ btFloodingAction::btFloodingAction(btBuoyantBody& body, btBuoyancyWorld* world, 
     setPermeableSamples(std::move(holes));
     m_state.setPose(m_world->getWaterFrame().toWater(buoyancy::toEigen(body.getMeshWorldTransform())));
     updateBodyMassProperties();
+    m_world->registerFloodingAction(this);
 }
+
+btFloodingAction::~btFloodingAction() { m_world->unregisterFloodingAction(this); }
 
 void btFloodingAction::setPermeableSamples(buoyancy::PermeableSamples holes) {
     const std::size_t n = holes.size();
@@ -64,10 +67,25 @@ void btFloodingAction::updateBodyMassProperties() {
     m_dirty = false;
 }
 
-void btFloodingAction::updateAction(btCollisionWorld*, btScalar deltaTimeStep) {
+void btFloodingAction::updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) {
     const double dt = double(deltaTimeStep);
     if (!(dt > 0) || !std::isfinite(dt)) return;
-    btRigidBody* rb = m_body->getRigidBody();
+    // The world's batch moves the water of every flooding action of this substep at the first one's turn; an action
+    // outside the batch (batching off, not in a discrete dynamics world, or stepped by hand) flows here.
+    if (!m_flowed) m_world->evaluateFloodingBatch(collisionWorld, dt);
+    if (!m_flowed) flow(dt);
+    m_flowed = false;
+    if (m_wake) m_body->getRigidBody()->activate();
+    if (m_massPending) updateBodyMassProperties();
+    m_wake = m_massPending = false;
+}
+
+void btFloodingAction::flowForBatch(double dt) { flow(dt); }
+
+void btFloodingAction::flow(double dt) {
+    m_flowed = true;
+    m_massPending = m_wake = false;
+    const btRigidBody* rb = m_body->getRigidBody();
     if (!rb->getBroadphaseHandle() || rb->getInvMass() == btScalar(0)) return;
     // In the water frame (btWaterFrame): heights and levels along its up, the surface's own coordinates.
     const Eigen::Isometry3d pose = m_world->getWaterFrame().toWater(buoyancy::toEigen(m_body->getMeshWorldTransform()));
@@ -98,8 +116,8 @@ void btFloodingAction::updateAction(btCollisionWorld*, btScalar deltaTimeStep) {
         buoyancy::applyIngress(m_state, m_holes, m_wy.data(), m_f.data(), dt, g, m_scratch, m_world->getFluidDensity());
     }
     m_state.flow(dt, m_world->getFluidDensity(), g);
-    if (m_state.totalWater() != before) rb->activate();
-    updateBodyMassProperties();
+    m_wake = m_state.totalWater() != before;
+    m_massPending = true;
 }
 
 void btFloodingAction::debugDraw(btIDebugDraw* debugDrawer) {

@@ -12,6 +12,11 @@
 ///         btFloodingAction flooding(body, &water, graph, holes);  world->addAction(&flooding);  // after it
 /// Gravity: Bullet applies gravity once per stepSimulation call with the mass current at that call, so a
 /// mass change takes effect on gravity from the next call (a lag of at most one frame, design.md 3).
+/// Threads: with the world's batching on (btBuoyancyWorld::setBatching), the first flooding action called in a
+/// substep moves the water of every flooding action of its world that is in the Bullet world, in parallel
+/// (btBuoyancyWorld::setThreads); each action then writes its body's mass properties at its own turn. The flow reads
+/// only the body's pose and the water, which no action changes within a substep, so the results are bit-identical to
+/// each action flowing at its own turn, for any thread count.
 
 #include <BulletBuoyancy/graph/WaterGraph.h>
 #include <BulletBuoyancy/graph/WaterGraphState.h>
@@ -39,7 +44,7 @@ public:
     /// @throws std::invalid_argument for a bad graph, a fixed body or a null world (nothing is changed)
     btFloodingAction(btBuoyantBody& body, btBuoyancyWorld* world, buoyancy::WaterGraph graph,
                      buoyancy::PermeableSamples holes = buoyancy::PermeableSamples());
-    ~btFloodingAction() override = default;
+    ~btFloodingAction() override;
     btFloodingAction(const btFloodingAction&) = delete;
     btFloodingAction& operator=(const btFloodingAction&) = delete;
 
@@ -89,7 +94,15 @@ public:
     void restoreState(const std::vector<unsigned char>& blob) { restoreState(blob.data(), blob.size()); }
     ///@}
 
+    /// Internal (btBuoyancyWorld's batch): place the graph at the body's pose, let water in and out and move it for
+    /// a substep of dt seconds, without writing to the body; updateAction then writes the mass properties. Called
+    /// on a worker thread, for this action only.
+    void flowForBatch(double dt);
+
 private:
+    /// The flow of one substep (flowForBatch's work): sets m_flowed, and m_massPending / m_wake for updateAction.
+    void flow(double dt);
+
     btBuoyantBody* m_body;
     btBuoyancyWorld* m_world;
     buoyancy::WaterGraphState m_state;
@@ -98,4 +111,7 @@ private:
     buoyancy::IngressScratch m_scratch;
     std::vector<double> m_wx, m_wy, m_wz, m_f;  // world positions and water heights of the holes
     bool m_dirty = true;
+    bool m_flowed = false;       ///< this substep's flow is done (by the batch), its mass update not yet
+    bool m_massPending = false;  ///< the flow ran with gravity along the water's down: update the mass properties
+    bool m_wake = false;         ///< the water inside changed: wake the body
 };
