@@ -836,7 +836,8 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     const btWaterAccelerationForce accelerationModel = m_settings.waterAcceleration;
     const bool froudeKrylov = accelerationModel == btWaterAccelerationForce::AddedMassAndFroudeKrylov &&
                               m_settings.buoyancyEnabled && !straddling;
-    Eigen::Vector3d waterForce = Eigen::Vector3d::Zero();
+    Eigen::Vector3d waterForce = Eigen::Vector3d::Zero();     // m_a Du/Dt [+ ρ V_sub Du/Dt], N
+    Eigen::Vector3d replacedPressure = Eigen::Vector3d::Zero(); // [F_p − ρ g V_sub ŷ], N
     bool waterForceOn = false;
     if (accelerationModel != btWaterAccelerationForce::None && (ma > 0 || froudeKrylov) && h.submerged_volume > 0 &&
         water->isTimeVarying()) {
@@ -848,7 +849,8 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
             waterForce = ma * acceleration;
             if (froudeKrylov) {
                 const double displaced = rho * h.submerged_volume;  // ρ V_sub, kg
-                waterForce += displaced * acceleration - (h.force - Eigen::Vector3d(0.0, displaced * g, 0.0));
+                waterForce += displaced * acceleration;
+                replacedPressure = h.force - Eigen::Vector3d(0.0, displaced * g, 0.0);
             }
             waterForceOn = true;
         }
@@ -935,7 +937,8 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // else a neutrally buoyant body keeps the −g·dt it got and drifts (design.md 3, symplectic Euler).
     const double prime = m_needsPrime ? 2.0 : 1.0;
     Eigen::Vector3d linearForce = prime * (h.force - ma * gravityAcc) + dragF;
-    if (waterForceOn) linearForce += waterForce;  // (flat or steady water: not even a zero added)
+    // (Flat or steady water: not even a zero added. The priming gives the replaced pressure's kick twice too.)
+    if (waterForceOn) linearForce += waterForce - prime * replacedPressure;
     const Eigen::Vector3d linearImpulse = (m / meff) * (linearForce * dt);
     const Eigen::Vector3d angularImpulse = (prime * h.torque + dragT) * dt;
 

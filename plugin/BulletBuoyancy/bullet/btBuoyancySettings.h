@@ -34,7 +34,8 @@ enum class btWaterAccelerationForce {
     /// local surface, whose wave force does not decay with depth and has no vertical part on a submerged body) is
     /// replaced by linear wave theory's Froude–Krylov force ρ V_sub Du/Dt, N: a small body then rides the waves
     /// (it follows the orbital motion of the water around it). Not for bodies comparable with the wavelength; not
-    /// applied while a body straddles water bodies or with buoyancyEnabled off.
+    /// applied while a body straddles water bodies or with buoyancyEnabled off. btBuoyancyResult::buoyancyForce stays
+    /// the integrated pressure force; linearImpulse holds what was applied.
     AddedMassAndFroudeKrylov,
 };
 
