@@ -23,10 +23,10 @@ struct RidingMotion {
 };
 
 /// A sphere of radius R and the water's density, centred one radius below the trough of one Gerstner wave
-/// (amplitude a, wavelength λ, steepness Q = 1: circular orbits), started with the water's velocity there; drag off,
-/// added mass on (C_a = ½) with the water's acceleration taken as `model` says. Settles for two periods, then
+/// (amplitude a, wavelength λ, steepness Q = 1: circular orbits), started with the water's velocity there; drag off
+/// (or the default drag and damping with `drag`), added mass on (C_a = ½) with the water's acceleration taken as `model` says. Settles for two periods, then
 /// measures four.
-RidingMotion rideOneWave(btWaterAccelerationForce model) {
+RidingMotion rideOneWave(btWaterAccelerationForce model, bool drag = false) {
     const double a = 0.25, lambda = 30.0, g = 9.81, R = 0.1;
     const double k = 2 * M_PI / lambda, omega = std::sqrt(g * k), period = 2 * M_PI / omega;
     btGerstnerWave wave;
@@ -37,10 +37,12 @@ RidingMotion rideOneWave(btWaterAccelerationForce model) {
     btGerstnerWaterSurface water({wave}, 0.0, g);
     btBuoyancySettings bs;
     bs.method = btBuoyancyMethod::ExactMesh;
-    bs.dragCoefficient = 0;
-    bs.skinFriction = 0;
-    bs.linearDamping = 0;
-    bs.radiationDamping = 0;
+    if (!drag) {
+        bs.dragCoefficient = 0;
+        bs.skinFriction = 0;
+        bs.linearDamping = 0;
+        bs.radiationDamping = 0;
+    }
     bs.addedMass = true;
     bs.addedMassCoefficient = 0.5;
     bs.waterAcceleration = model;
@@ -119,6 +121,18 @@ TEST_CASE("a small neutrally buoyant sphere under a long wave follows its orbita
         CHECK(vertical == Approx(expectedVertical).margin(0.01));
         CHECK(std::abs(vertical - 1) > 0.05);  // it does not ride the wave
     }
+}
+
+TEST_CASE("with the default drag the small sphere rides the wave too", "[bullet][dynamics][waves]") {
+    const double a = 0.25, lambda = 30.0, g = 9.81;
+    const double k = 2 * M_PI / lambda, omega = std::sqrt(g * k);
+    const RidingMotion m = rideOneWave(btWaterAccelerationForce::AddedMassAndFroudeKrylov, true);
+    const double orbital = a * omega * std::exp(k * m.meanDepth);
+    std::printf("riding with drag: mean depth %.4f m, horizontal %.4f, vertical %.4f of the orbital speed, depth drift "
+                "%.4f m\n",
+                m.meanDepth, m.horizontalAmplitude / orbital, m.verticalAmplitude / orbital, m.depthDrift);
+    CHECK(std::abs(m.horizontalAmplitude / orbital - 1) < 0.05);
+    CHECK(std::abs(m.verticalAmplitude / orbital - 1) < 0.05);
 }
 
 namespace {
