@@ -221,20 +221,30 @@ void btFftOceanSurface::ensureAcceleration(double t) const {
             const Complex e(std::cos(w * t), -std::sin(w * t));
             second[id] = -(w * w) * (m_h0[id] * e + std::conj(m_h0[neg]) * std::conj(e));
         }
-    for (int c = 0; c < 3; ++c) {
+    // The fields are real, their spectra Hermitian: x and y go through one transform as its real and imaginary parts
+    // (IFFT(S_x + i S_y) = a_x + i a_y), z through a second.
+    for (int pass = 0; pass < 2; ++pass) {
         m_work = second;
         for (int j = 0; j < m_n; ++j)
             for (int i = 0; i < m_n; ++i) {
                 const double kx = freq(i, m_n) * m_dk, kz = freq(j, m_n) * m_dk, k = std::hypot(kx, kz);
                 const std::size_t id = std::size_t(j) * m_n + i;
                 if (!(k > 0)) m_work[id] = 0;
-                else if (c == 0) m_work[id] *= Complex(0, kx / k);
-                else if (c == 2) m_work[id] *= Complex(0, kz / k);
+                else if (pass == 0) m_work[id] *= Complex(0, kx / k + 1.0);  // S_x + i S_y = i (k_x/k) S + i S
+                else m_work[id] *= Complex(0, kz / k);
             }
         inverseFft2(m_work);
-        std::vector<double>& out = c == 0 ? m_accX : c == 1 ? m_accY : m_accZ;
-        out.resize(nn);
-        for (std::size_t i = 0; i < nn; ++i) out[i] = m_work[i].real();
+        m_accX.resize(nn);
+        m_accY.resize(nn);
+        m_accZ.resize(nn);
+        for (std::size_t i = 0; i < nn; ++i) {
+            if (pass == 0) {
+                m_accX[i] = m_work[i].real();
+                m_accY[i] = m_work[i].imag();
+            } else {
+                m_accZ[i] = m_work[i].real();
+            }
+        }
     }
     m_tAcceleration = t;
 }

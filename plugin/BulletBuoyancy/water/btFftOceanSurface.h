@@ -55,7 +55,7 @@ public:
     void velocities(const double* x, const double* y, const double* z, std::size_t n, double t, double* outVx,
                     double* outVy, double* outVz) const override;
     /// Linear (Airy) acceleration ∂u/∂t of every mode (horizontal −i ω² k̂ h̃, vertical −ω² h̃), from three more fields
-    /// computed once per time value like the velocity's, evaluated at the rest position and scaled by
+    /// computed once per time value like the velocity's (two inverse FFTs: x and y share one), evaluated at the rest position and scaled by
     /// min(1, e^{k_p (y − h)}) like velocities(), m/s².
     void accelerations(const double* x, const double* y, const double* z, std::size_t n, double t, double* outAx,
                        double* outAy, double* outAz) const override;
