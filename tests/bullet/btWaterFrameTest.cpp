@@ -260,7 +260,11 @@ TEST_CASE("any up axis: Gerstner waves in a Z-up and an oblique frame move as in
     wave.directionZ = 0.8;
     wave.steepness = 0.5;
     const btGerstnerWaterSurface water({wave}, 0.0, 9.81);
-    const btBuoyancySettings settings;
+    btBuoyancySettings settings;
+    // The water's acceleration (queried in the water frame, applied in the world's) with added mass, and with the
+    // Froude–Krylov force too.
+    settings.waterAcceleration = GENERATE(btWaterAccelerationForce::AddedMass,
+                                          btWaterAccelerationForce::AddedMassAndFroudeKrylov);
     const auto reference = MappedScene(SceneMap(), water, 9.81, settings).run();
     const double barPosition = kDouble ? 1e-6 : 5e-4, barAngle = kDouble ? 1e-6 : 5e-4;  // as the flat-water test
     const auto maps = sceneMaps(0);

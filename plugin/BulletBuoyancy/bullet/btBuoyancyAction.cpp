@@ -828,6 +828,34 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     const double meff = m + ma;
     const Eigen::Vector3d gravityAcc = frame.toWaterVector(toEigen(m_body->getGravity()));
 
+    // The water's acceleration Du/Dt (design.md 2.7, "The water's acceleration"), at the centre of buoyancy, one
+    // query per substep, only under water that changes over time: the added mass acts on the acceleration relative
+    // to the water, (m + m_a) a = F − m g + m_a Du/Dt; with AddedMassAndFroudeKrylov the pressure force's part beyond
+    // ρ g V_sub ŷ is replaced by linear theory's Froude–Krylov force ρ V_sub Du/Dt. Applied with the hydrostatic
+    // kick (scaled by m/(m + m_a) below); drag is evaluated without it (dragEvaluationVelocity).
+    const btWaterAccelerationForce accelerationModel = m_settings.waterAcceleration;
+    const bool froudeKrylov = accelerationModel == btWaterAccelerationForce::AddedMassAndFroudeKrylov &&
+                              m_settings.buoyancyEnabled && !straddling;
+    Eigen::Vector3d waterForce = Eigen::Vector3d::Zero();     // m_a Du/Dt [+ ρ V_sub Du/Dt], N
+    Eigen::Vector3d replacedPressure = Eigen::Vector3d::Zero(); // [F_p − ρ g V_sub ŷ], N
+    bool waterForceOn = false;
+    if (accelerationModel != btWaterAccelerationForce::None && (ma > 0 || froudeKrylov) && h.submerged_volume > 0 &&
+        water->isTimeVarying()) {
+        const Eigen::Vector3d& cb = h.centre_of_buoyancy;
+        double du[3] = {0, 0, 0};
+        water->accelerations(&cb.x(), &cb.y(), &cb.z(), 1, time, &du[0], &du[1], &du[2]);
+        const Eigen::Vector3d acceleration(du[0], du[1], du[2]);
+        if (acceleration.allFinite() && cb.allFinite()) {
+            waterForce = ma * acceleration;
+            if (froudeKrylov) {
+                const double displaced = rho * h.submerged_volume;  // ρ V_sub, kg
+                waterForce += displaced * acceleration;
+                replacedPressure = h.force - Eigen::Vector3d(0.0, displaced * g, 0.0);
+            }
+            waterForceOn = true;
+        }
+    }
+
     // Drag is evaluated at the velocity the next substep will integrate: this substep's hydrostatic kick
     // plus the gravity kick Bullet applies next. At rest in equilibrium that is exactly 0, so drag cannot
     // shift the draft (with the bare body velocity, −g·dt at rest, linear damping would sink it by b·g·dt/g).
@@ -908,8 +936,10 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // kick for the starting pose. Give that missed hydrostatic kick once (evaluated at the current pose),
     // else a neutrally buoyant body keeps the −g·dt it got and drifts (design.md 3, symplectic Euler).
     const double prime = m_needsPrime ? 2.0 : 1.0;
-    const Eigen::Vector3d linearImpulse =
-        (m / meff) * ((prime * (h.force - ma * gravityAcc) + dragF) * dt);
+    Eigen::Vector3d linearForce = prime * (h.force - ma * gravityAcc) + dragF;
+    // (Flat or steady water: not even a zero added. The priming gives the replaced pressure's kick twice too.)
+    if (waterForceOn) linearForce += waterForce - prime * replacedPressure;
+    const Eigen::Vector3d linearImpulse = (m / meff) * (linearForce * dt);
     const Eigen::Vector3d angularImpulse = (prime * h.torque + dragT) * dt;
 
     // Back to the world (the result and the impulses are world-frame).

@@ -79,6 +79,10 @@ void btBuoyancySettings::validate() const {
     if (linearDamping > 100)
         throw std::invalid_argument("linearDamping: must be in 0..100 m/s (got " + std::to_string(linearDamping) + ")");
     requireNonNegative(addedMassCoefficient, "addedMassCoefficient");
+    if (waterAcceleration != btWaterAccelerationForce::None && waterAcceleration != btWaterAccelerationForce::AddedMass &&
+        waterAcceleration != btWaterAccelerationForce::AddedMassAndFroudeKrylov)
+        throw std::invalid_argument("waterAcceleration: not a btWaterAccelerationForce (got " +
+                                    std::to_string(int(waterAcceleration)) + ")");
     if (!std::isfinite(curvedShapeTolerance) || curvedShapeTolerance <= 0 || curvedShapeTolerance > 0.1)
         throw std::invalid_argument("curvedShapeTolerance: must be a finite number in (0, 0.1] (got " +
                                     std::to_string(curvedShapeTolerance) + ")");

@@ -21,6 +21,24 @@ const char* btBuoyancyMethodName(btBuoyancyMethod method);
 /// Parse a name of btBuoyancyMethodName ("auto" is accepted for "default"). @throws std::invalid_argument naming the unknown value
 btBuoyancyMethod btBuoyancyMethodFromName(const std::string& name);
 
+/// How the water's own acceleration Du/Dt acts on a body's linear motion (btBuoyancySettings::waterAcceleration,
+/// design.md 2.7, "The water's acceleration"). Du/Dt is taken at the centre of buoyancy: both terms are meant for
+/// bodies small against the wavelength (Morison's regime); over a body as long as the waves they are one point's.
+enum class btWaterAccelerationForce {
+    /// Not at all: the added mass acts on the body's absolute acceleration, (m + m_a) a = F − m g (no query).
+    None,
+    /// The added mass acts on the acceleration relative to the water: (m + m_a) a = F − m g + m_a Du/Dt, N. Nothing
+    /// without btBuoyancySettings::addedMass.
+    AddedMass,
+    /// AddedMass, and the pressure force's part beyond the buoyancy ρ g V_sub (the hydrostatic pressure below the
+    /// local surface, whose wave force does not decay with depth and has no vertical part on a submerged body) is
+    /// replaced by linear wave theory's Froude–Krylov force ρ V_sub Du/Dt, N: a small body then rides the waves
+    /// (it follows the orbital motion of the water around it). Not for bodies comparable with the wavelength; not
+    /// applied while a body straddles water bodies or with buoyancyEnabled off. btBuoyancyResult::buoyancyForce stays
+    /// the integrated pressure force; linearImpulse holds what was applied.
+    AddedMassAndFroudeKrylov,
+};
+
 /// Per-body buoyancy settings. Fluid density, gravity and the water surface belong to btBuoyancyWorld.
 struct btBuoyancySettings {
     ///@name Integration method and level of detail
@@ -127,6 +145,12 @@ struct btBuoyancySettings {
     /// none). Keeps light bodies (density ratio ≪ 1) stable at game time steps.
     bool addedMass = true;
     double addedMassCoefficient = 0.5; ///< C_a, dimensionless, ≥ 0; 0.5 is exact for a fully submerged sphere
+    /// How the water's own acceleration Du/Dt (btWaterSurface::accelerations at the centre of buoyancy, one query per
+    /// body and substep, only under water that changes over time) acts on the linear motion (design.md 2.7, "The
+    /// water's acceleration"). Default None (no query): the terms take Du/Dt at one point, right for bodies small
+    /// against the wavelength (a buoy, an ROV, debris) and not for a hull as long as the waves; turn them on for such
+    /// bodies (AddedMassAndFroudeKrylov makes a small body ride the waves' orbits).
+    btWaterAccelerationForce waterAcceleration = btWaterAccelerationForce::None;
 
     ///@name Features
     bool buoyancyEnabled = true; ///< pressure force and torque (design.md 2.3); off leaves only drag

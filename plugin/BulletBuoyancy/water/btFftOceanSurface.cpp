@@ -68,7 +68,7 @@ btFftOceanSurface::btFftOceanSurface(const btFftOceanSettings& s) : m_s(s) {
             const double amp = std::sqrt(spectrumDensity(kx, kz) * m_dk * m_dk / 4.0);
             m_h0[std::size_t(j) * m_n + i] = Complex(a * amp, b * amp);
         }
-    m_tHeights = m_tVelocity = std::numeric_limits<double>::quiet_NaN();
+    m_tHeights = m_tVelocity = m_tAcceleration = std::numeric_limits<double>::quiet_NaN();
 }
 
 double btFftOceanSurface::spectrumDensity(double kx, double kz) const {
@@ -205,6 +205,50 @@ void btFftOceanSurface::ensureVelocity(double t) const {
     m_tVelocity = t;
 }
 
+void btFftOceanSurface::ensureAcceleration(double t) const {
+    ensureHeights(t);
+    if (t == m_tAcceleration) return;
+    const std::size_t nn = std::size_t(m_n) * m_n;
+    // design.md 2.7, "The water's acceleration": ∂/∂t of the velocity's modes, ∂²h̃/∂t² = −ω² h̃ (each of h̃'s two
+    // terms turns at ±ω), held in `second`: horizontal i k̂ · second = −i ω² k̂ h̃ (∂/∂t of ω k̂ (h0 e^{−iωt} −
+    // conj(h0(−k)) e^{iωt})), vertical −ω² h̃.
+    std::vector<Complex> second(nn);
+    for (int j = 0; j < m_n; ++j)
+        for (int i = 0; i < m_n; ++i) {
+            const std::size_t id = std::size_t(j) * m_n + i;
+            const std::size_t neg = std::size_t((m_n - j) % m_n) * m_n + std::size_t((m_n - i) % m_n);
+            const double w = m_omega[id];
+            const Complex e(std::cos(w * t), -std::sin(w * t));
+            second[id] = -(w * w) * (m_h0[id] * e + std::conj(m_h0[neg]) * std::conj(e));
+        }
+    // The fields are real, their spectra Hermitian: x and y go through one transform as its real and imaginary parts
+    // (IFFT(S_x + i S_y) = a_x + i a_y), z through a second.
+    for (int pass = 0; pass < 2; ++pass) {
+        m_work = second;
+        for (int j = 0; j < m_n; ++j)
+            for (int i = 0; i < m_n; ++i) {
+                const double kx = freq(i, m_n) * m_dk, kz = freq(j, m_n) * m_dk, k = std::hypot(kx, kz);
+                const std::size_t id = std::size_t(j) * m_n + i;
+                if (!(k > 0)) m_work[id] = 0;
+                else if (pass == 0) m_work[id] *= Complex(0, kx / k + 1.0);  // S_x + i S_y = i (k_x/k) S + i S
+                else m_work[id] *= Complex(0, kz / k);
+            }
+        inverseFft2(m_work);
+        m_accX.resize(nn);
+        m_accY.resize(nn);
+        m_accZ.resize(nn);
+        for (std::size_t i = 0; i < nn; ++i) {
+            if (pass == 0) {
+                m_accX[i] = m_work[i].real();
+                m_accY[i] = m_work[i].imag();
+            } else {
+                m_accZ[i] = m_work[i].real();
+            }
+        }
+    }
+    m_tAcceleration = t;
+}
+
 double btFftOceanSurface::sampleField(const std::vector<double>& f, double x, double z) const {
     const double u = x / m_dx, v = z / m_dx;
     const double fu = std::floor(u), fv = std::floor(v), a = u - fu, b = v - fv;
@@ -261,10 +305,14 @@ void btFftOceanSurface::restPosition(double x, double z, double& x0, double& z0)
 }
 
 template <class Read>
-void btFftOceanSurface::withFields(double t, bool velocity, Read&& read) const {
+void btFftOceanSurface::withFields(double t, Fields fields, Read&& read) const {
+    const auto ready = [&] {
+        return t == m_tHeights && (fields != Fields::Velocity || t == m_tVelocity) &&
+               (fields != Fields::Acceleration || t == m_tAcceleration);
+    };
     {
         std::shared_lock<std::shared_mutex> lock(m_mutex);
-        if (t == m_tHeights && (!velocity || t == m_tVelocity)) {
+        if (ready()) {
             read();
             return;
         }
@@ -272,15 +320,17 @@ void btFftOceanSurface::withFields(double t, bool velocity, Read&& read) const {
     // Not yet computed for t: compute and read under the exclusive lock (no retry, so callers at different times
     // cannot starve each other).
     std::unique_lock<std::shared_mutex> lock(m_mutex);
-    if (velocity)
+    if (fields == Fields::Velocity)
         ensureVelocity(t);
+    else if (fields == Fields::Acceleration)
+        ensureAcceleration(t);
     else
         ensureHeights(t);
     read();
 }
 
 void btFftOceanSurface::heights(const double* x, const double* z, std::size_t n, double t, double* outHeight) const {
-    withFields(t, false, [&] {
+    withFields(t, Fields::Heights, [&] {
         for (std::size_t i = 0; i < n; ++i) {
             double x0, z0;
             restPosition(x[i], z[i], x0, z0);
@@ -291,7 +341,7 @@ void btFftOceanSurface::heights(const double* x, const double* z, std::size_t n,
 
 void btFftOceanSurface::velocities(const double* x, const double* y, const double* z, std::size_t n, double t,
                                    double* outVx, double* outVy, double* outVz) const {
-    withFields(t, true, [&] {
+    withFields(t, Fields::Velocity, [&] {
         for (std::size_t i = 0; i < n; ++i) {
             double x0, z0;
             restPosition(x[i], z[i], x0, z0);
@@ -303,8 +353,22 @@ void btFftOceanSurface::velocities(const double* x, const double* y, const doubl
     });
 }
 
+void btFftOceanSurface::accelerations(const double* x, const double* y, const double* z, std::size_t n, double t,
+                                      double* outAx, double* outAy, double* outAz) const {
+    withFields(t, Fields::Acceleration, [&] {
+        for (std::size_t i = 0; i < n; ++i) {
+            double x0, z0;
+            restPosition(x[i], z[i], x0, z0);
+            const double decay = std::exp(std::min(0.0, m_kPeak * (y[i] - m_s.height)));
+            outAx[i] = decay * sampleField(m_accX, x0, z0);
+            outAy[i] = decay * sampleField(m_accY, x0, z0);
+            outAz[i] = decay * sampleField(m_accZ, x0, z0);
+        }
+    });
+}
+
 void btFftOceanSurface::heightBounds(double, double, double, double, double t, double& outMin, double& outMax) const {
-    withFields(t, false, [&] {
+    withFields(t, Fields::Heights, [&] {
         outMin = m_s.height + m_etaMin;
         outMax = m_s.height + m_etaMax;
     });
@@ -312,7 +376,7 @@ void btFftOceanSurface::heightBounds(double, double, double, double, double t, d
 
 std::vector<double> btFftOceanSurface::elevationField(double t) const {
     std::vector<double> eta;
-    withFields(t, false, [&] { eta = m_eta; });
+    withFields(t, Fields::Heights, [&] { eta = m_eta; });
     return eta;
 }
 
@@ -325,7 +389,7 @@ bool btFftOceanSurface::bilinearLattice(double, btWaterLattice& out) const {
 
 double btFftOceanSurface::heightThirdDerivativeScale(double t) const {
     double scale = 0;
-    withFields(t, false, [&] { scale = m_thirdDerivativeScale; });
+    withFields(t, Fields::Heights, [&] { scale = m_thirdDerivativeScale; });
     return std::isfinite(scale) ? scale : 0.0;
 }
 

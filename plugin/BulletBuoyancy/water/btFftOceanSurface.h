@@ -54,6 +54,11 @@ public:
     /// rest position and scaled by min(1, e^{k_p (y − h)}) with the spectral peak wavenumber k_p.
     void velocities(const double* x, const double* y, const double* z, std::size_t n, double t, double* outVx,
                     double* outVy, double* outVz) const override;
+    /// Linear (Airy) acceleration ∂u/∂t of every mode (horizontal −i ω² k̂ h̃, vertical −ω² h̃), from three more fields
+    /// computed once per time value like the velocity's (two inverse FFTs: x and y share one), evaluated at the rest position and scaled by
+    /// min(1, e^{k_p (y − h)}) like velocities(), m/s².
+    void accelerations(const double* x, const double* y, const double* z, std::size_t n, double t, double* outAx,
+                       double* outAy, double* outAz) const override;
     /// h + min/max of the field at time t over the whole patch.
     void heightBounds(double minX, double minZ, double maxX, double maxZ, double t, double& outMin,
                       double& outMax) const override;
@@ -82,11 +87,14 @@ private:
     using Complex = std::complex<double>;
     void ensureHeights(double t) const;   // requires m_mutex held exclusively
     void ensureVelocity(double t) const;  // requires m_mutex held exclusively
-    /// Run `read` with the fields of time t (and the velocity fields when `velocity`) in place: under a shared lock
-    /// when they already are (concurrent queries at one time, e.g. a world's bodies in one substep, read at once),
-    /// else under the exclusive lock after computing them.
+    void ensureAcceleration(double t) const;  // requires m_mutex held exclusively
+    /// Which fields a query reads: the heights (and displacements) alone, or with the velocity or acceleration ones.
+    enum class Fields { Heights, Velocity, Acceleration };
+    /// Run `read` with the fields of time t (the heights, and the velocity or acceleration fields as `fields` says)
+    /// in place: under a shared lock when they already are (concurrent queries at one time, e.g. a world's bodies in
+    /// one substep, read at once), else under the exclusive lock after computing them.
     template <class Read>
-    void withFields(double t, bool velocity, Read&& read) const;
+    void withFields(double t, Fields fields, Read&& read) const;
     void inverseFft2(std::vector<Complex>& data) const;
     double sampleField(const std::vector<double>& f, double x, double z) const;
     void restPosition(double x, double z, double& x0, double& z0) const;  // requires fields at t
@@ -97,8 +105,8 @@ private:
     std::vector<Complex> m_h0;       // N×N
     std::vector<double> m_omega;     // N×N
     mutable std::shared_mutex m_mutex;  ///< exclusive: computing the fields; shared: reading them
-    mutable double m_tHeights, m_tVelocity;
-    mutable std::vector<double> m_eta, m_dispX, m_dispZ, m_velX, m_velY, m_velZ;
+    mutable double m_tHeights, m_tVelocity, m_tAcceleration;
+    mutable std::vector<double> m_eta, m_dispX, m_dispZ, m_velX, m_velY, m_velZ, m_accX, m_accY, m_accZ;
     mutable double m_etaMin = 0, m_etaMax = 0;
     mutable double m_thirdDerivativeScale = 0;  // 1/m², at m_tHeights
     mutable std::vector<Complex> m_work;

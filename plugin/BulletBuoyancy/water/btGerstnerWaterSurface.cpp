@@ -534,6 +534,72 @@ void btGerstnerWaterSurface::velocities(const double* x, const double* y, const 
     batch<true>(x, y, z, n, t, nullptr, 0.0, false, nullptr, outVx, outVy, outVz);
 }
 
+void btGerstnerWaterSurface::accelerations(const double* x, const double* y, const double* z, std::size_t n, double t,
+                                           double* outAx, double* outAy, double* outAz) const {
+    // design.md 2.7, "The water's acceleration": the acceleration of the trochoidal wave's particle that is at
+    // (x, y, z). Its rest position (x₀, z₀) and rest height y₀ solve, with e_i = e^{k_i min(0, y₀ − h)},
+    //     x = x₀ − Σ Q A e d sin θ,   y = y₀ + Σ A e cos θ   (Newton's method, 3×3),
+    // and it moves on its orbit at ω: a = Σ (Q A ω² e d sin θ, −A ω² e cos θ), pointing to the orbit's centre. At the
+    // surface (y₀ = h) it is the surface particle's; below, the particle's own decay and phase (not the ones of the
+    // surface particle above, as velocities() takes them): along a closed orbit the acceleration has no mean, so a
+    // body carried by the water does not drift in depth.
+    const std::size_t m = m_waves.size();
+    for (std::size_t p = 0; p < n; ++p) {
+        double x0 = x[p], z0 = z[p], y0 = std::min(y[p], m_height);
+        // Stop at a step of 1e-10 m, or a few ulps of the coordinates far from the origin; the acceleration is the
+        // one before that last step (off by ≤ k tol of A ω²).
+        const double tol = std::max(1e-10, 4e-15 * (std::abs(x[p]) + std::abs(y[p]) + std::abs(z[p])));
+        double ax = 0, ay = 0, az = 0;
+        for (int it = 0;; ++it) {
+            // Residual F = (x₀ − Σ Q A e d_x sin θ − x, y₀ + Σ A e cos θ − y, z₀ − Σ Q A e d_z sin θ − z), its
+            // Jacobian J (rows F, columns x₀, y₀, z₀), and the acceleration at the current estimate.
+            const double depth = std::min(0.0, y0 - m_height);
+            const bool below = depth < 0;
+            double fx = x0 - x[p], fy = y0 - y[p], fz = z0 - z[p];
+            double jxx = 1, jxy = 0, jxz = 0, jyx = 0, jyy = 1, jyz = 0, jzx = 0, jzy = 0, jzz = 1;
+            ax = ay = az = 0;
+            for (std::size_t i = 0; i < m; ++i) {
+                const Wave& w = m_waves[i];
+                const double th = w.kdx * x0 + w.kdz * z0 + (w.phase - w.omega * t);
+                const double sn = std::sin(th), cs = std::cos(th);
+                const double e = below ? std::exp(w.k * depth) : 1.0, de = below ? w.k * e : 0.0;  // e, ∂e/∂y₀
+                fx -= w.qadx * e * sn;
+                fz -= w.qadz * e * sn;
+                fy += w.a * e * cs;
+                jxx -= w.qadx * e * cs * w.kdx;
+                jxz -= w.qadx * e * cs * w.kdz;
+                jxy -= w.qadx * de * sn;
+                jzx -= w.qadz * e * cs * w.kdx;
+                jzz -= w.qadz * e * cs * w.kdz;
+                jzy -= w.qadz * de * sn;
+                jyx -= w.a * e * sn * w.kdx;
+                jyz -= w.a * e * sn * w.kdz;
+                jyy += w.a * de * cs;
+                ax += w.qawdx * w.omega * e * sn;
+                az += w.qawdz * w.omega * e * sn;
+                ay -= w.aw * w.omega * e * cs;
+            }
+            if (it >= kMaxIterations) break;
+            // Newton step J s = F by Cramer's rule; the fixed-point step (s = F) where J is nearly singular.
+            const double c0 = jyy * jzz - jyz * jzy, c1 = jyz * jzx - jyx * jzz, c2 = jyx * jzy - jyy * jzx;
+            const double det = jxx * c0 + jxy * c1 + jxz * c2;
+            double sx = fx, sy = fy, sz = fz;
+            if (std::abs(det) > 1e-6) {
+                sx = (fx * c0 + jxy * (fz * jyz - fy * jzz) + jxz * (fy * jzy - fz * jyy)) / det;
+                sy = (jxx * (fy * jzz - fz * jyz) + fx * c1 + jxz * (fz * jyx - fy * jzx)) / det;
+                sz = (jxx * (jyy * fz - jzy * fy) + jxy * (jzx * fy - jyx * fz) + fx * c2) / det;
+            }
+            x0 -= sx;
+            y0 -= sy;
+            z0 -= sz;
+            if (!(sx * sx + sy * sy + sz * sz > tol * tol)) break;
+        }
+        outAx[p] = ax;
+        outAy[p] = ay;
+        outAz[p] = az;
+    }
+}
+
 void btGerstnerWaterSurface::heightsCached(const double* x, const double* z, std::size_t n, double t,
                                            double* outHeight, btWaterQueryCache& cache) const {
     double* disp[4];

@@ -47,6 +47,14 @@ public:
     /// parametric surface above) scaled by min(1, e^{k_i (y − h)}), evaluated at the rest position of (x, z).
     void velocities(const double* x, const double* y, const double* z, std::size_t n, double t, double* outVx,
                     double* outVy, double* outVz) const override;
+    /// The acceleration of the trochoidal wave's particle that is at (x, y, z), m/s²: its rest position (x₀, z₀) and
+    /// rest height y₀ solve x = x₀ − Σ Q A e d sin θ, y = y₀ + Σ A e cos θ with e = e^{k_i min(0, y₀ − h)} (Newton's
+    /// method), and a = Σ (Q A ω² e d sin θ, −A ω² e cos θ), towards the centre of its orbit. At the surface it is
+    /// the second time derivative of the parametric surface; below, the particle's own phase and decay (velocities()
+    /// takes the surface particle's phase: they differ at second order in the slope), so that along a closed orbit
+    /// it has no mean and a body carried by the water keeps its depth. One scalar solve per point from a cold start.
+    void accelerations(const double* x, const double* y, const double* z, std::size_t n, double t, double* outAx,
+                       double* outAy, double* outAz) const override;
     /// Fast path for bodies (one call per body per substep): the same inversion to the same accuracy, started
     /// from each point's displacement x − x₀ extrapolated linearly in time from the last two calls kept in
     /// `cache` (cache.a/b: [0, n) the last displacement, [n, 2n) the one before; a[2n], a[2n+1] their times,

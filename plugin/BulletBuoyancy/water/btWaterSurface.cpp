@@ -1,10 +1,30 @@
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
+#include <algorithm>
 #include <cmath>
 
 void btWaterSurface::velocities(const double*, const double*, const double*, std::size_t n, double, double* outVx,
                                 double* outVy, double* outVz) const {
     for (std::size_t i = 0; i < n; ++i) outVx[i] = outVy[i] = outVz[i] = 0.0;
+}
+
+void btWaterSurface::accelerations(const double* x, const double* y, const double* z, std::size_t n, double t,
+                                   double* outAx, double* outAy, double* outAz) const {
+    // design.md 2.7, "The water's acceleration": ∂u/∂t ≈ (u(t + h) − u(t − h)) / 2h at fixed points, in chunks of
+    // kChunk points on the stack (no allocation).
+    constexpr std::size_t kChunk = 32;
+    const double h = kAccelerationTimeStep;
+    double px[kChunk], py[kChunk], pz[kChunk], mx[kChunk], my[kChunk], mz[kChunk];
+    for (std::size_t start = 0; start < n; start += kChunk) {
+        const std::size_t m = std::min(kChunk, n - start);
+        velocities(x + start, y + start, z + start, m, t + h, px, py, pz);
+        velocities(x + start, y + start, z + start, m, t - h, mx, my, mz);
+        for (std::size_t i = 0; i < m; ++i) {
+            outAx[start + i] = (px[i] - mx[i]) / (2.0 * h);
+            outAy[start + i] = (py[i] - my[i]) / (2.0 * h);
+            outAz[start + i] = (pz[i] - mz[i]) / (2.0 * h);
+        }
+    }
 }
 
 double btWaterSurface::heightThirdDerivativeScale(double t) const {
@@ -28,6 +48,11 @@ void btFlatWaterSurface::velocities(const double*, const double*, const double*,
         outVy[i] = 0.0;
         outVz[i] = m_currentZ;
     }
+}
+
+void btFlatWaterSurface::accelerations(const double*, const double*, const double*, std::size_t n, double,
+                                       double* outAx, double* outAy, double* outAz) const {
+    for (std::size_t i = 0; i < n; ++i) outAx[i] = outAy[i] = outAz[i] = 0.0;
 }
 
 void btFlatWaterSurface::heightBounds(double, double, double, double, double, double& outMin, double& outMax) const {

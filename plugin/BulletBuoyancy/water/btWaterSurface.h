@@ -50,6 +50,21 @@ public:
     virtual void velocities(const double* x, const double* y, const double* z, std::size_t n, double t,
                             double* outVx, double* outVy, double* outVz) const;
 
+    /// The water's acceleration Du/Dt at n points below the surface (design.md 2.7, "The water's acceleration"), in the
+    /// same coordinates as velocities(): what accelerates a small body carried by the water (its added mass acts on
+    /// the acceleration relative to it). Default: the local acceleration ∂u/∂t at the fixed points, a central
+    /// difference of velocities() at t ± kAccelerationTimeStep (two velocity queries per call, no allocation); the
+    /// convective part (u·∇)u, second order in the wave slope for waves, is left out, and a surface whose velocities
+    /// do not depend on t (a steady current, a simulation stepped elsewhere) gets zero.
+    /// @param[in] x,y,z  #n coordinates, m
+    /// @param[in] t      simulation time, s
+    /// @param[out] outAx,outAy,outAz  #n accelerations, m/s²
+    virtual void accelerations(const double* x, const double* y, const double* z, std::size_t n, double t,
+                               double* outAx, double* outAy, double* outAz) const;
+
+    /// Time step of the default accelerations()' central difference, s.
+    static constexpr double kAccelerationTimeStep = 1e-3;
+
     /// heights() with per-caller warm-start memory: same results (to the surface's documented tolerance), faster
     /// when the points move little between calls. Default: ignores the cache.
     virtual void heightsCached(const double* x, const double* z, std::size_t n, double t, double* outHeight,
@@ -134,6 +149,9 @@ public:
     void heights(const double* x, const double* z, std::size_t n, double t, double* outHeight) const override;
     void velocities(const double* x, const double* y, const double* z, std::size_t n, double t, double* outVx,
                     double* outVy, double* outVz) const override;
+    /// Zero: the level and the current are steady, m/s².
+    void accelerations(const double* x, const double* y, const double* z, std::size_t n, double t, double* outAx,
+                       double* outAy, double* outAz) const override;
     void heightBounds(double minX, double minZ, double maxX, double maxZ, double t, double& outMin,
                       double& outMax) const override;
     bool isFlat(double t, double& outHeight) const override;
