@@ -138,6 +138,9 @@ TEST_CASE("scene errors name the key and nothing runs", "[bullet][run][errors]")
     expectUsageError(R"({"bodies": [{"shape": {"type": "box", "size": [1,1,1]}, "density": 5,
                                      "buoyancy": {"method": "magic"}}]})",
                      "bodies[0].buoyancy.method");
+    expectUsageError(R"({"bodies": [{"shape": {"type": "box", "size": [1,1,1]}, "density": 5,
+                                     "buoyancy": {"water_acceleration": "froude"}}]})",
+                     "bodies[0].buoyancy.water_acceleration: unknown value \"froude\"");
     expectUsageError(R"({"water": {"type": "waves"}, "bodies": []})", "water.type");
     expectUsageError(R"({"bodies": [{"shape": {"type": "box", "size": [1,1,1]}, "density": 5, "mass_model": "shell"}]})",
                      "bodies[0].thickness");
@@ -146,6 +149,16 @@ TEST_CASE("scene errors name the key and nothing runs", "[bullet][run][errors]")
     const auto s = buoyancy::cli::parseScene(R"({"bodies": [{"shape": {"type": "box", "size": [1,1,1]}, "density": 5}]})",
                                              "ok.json", ".");
     CHECK(s.bodies.at(0).name == "body0");
+    CHECK(s.bodies.at(0).buoyancy.waterAcceleration == btWaterAccelerationForce::None);
+    for (const auto& [name, value] : {std::pair<const char*, btWaterAccelerationForce>{"none", btWaterAccelerationForce::None},
+                                      {"added-mass", btWaterAccelerationForce::AddedMass},
+                                      {"added-mass-and-froude-krylov", btWaterAccelerationForce::AddedMassAndFroudeKrylov}}) {
+        const auto w = buoyancy::cli::parseScene(
+            std::string(R"({"bodies": [{"shape": {"type": "box", "size": [1,1,1]}, "density": 5, "buoyancy": )"
+                        R"({"water_acceleration": ")") + name + "\"}}]}",
+            "ok.json", ".");
+        CHECK(w.bodies.at(0).buoyancy.waterAcceleration == value);
+    }
     CHECK(s.dt == Approx(1.0 / 240.0));
     CHECK(s.substepsPerFrame == 4);
     CHECK(s.duration == 10.0);
