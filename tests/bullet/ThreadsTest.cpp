@@ -254,6 +254,26 @@ TEST_CASE("threads: flooding and time-varying mass give the sequential order's r
     CHECK(g.water.getLastFloodingBatchSize() == 8);
 }
 
+TEST_CASE("threads: a flooding action added to the Bullet world twice flows at each of its turns", "[bullet][threads]") {
+    // Unbatched, an action added twice runs twice a substep; the batch leaves it out so that it still does (the other
+    // 7 flooding actions flow in the batch), and the results equal the sequential order's.
+    FleetOptions o;
+    o.flooding = true;
+    o.threads = 2;
+    const auto twice = [](FleetOptions opt, int frames, int* batch) {
+        Fleet f(opt);
+        f.add(f.floods.front().get());
+        f.run(frames);
+        if (batch) *batch = f.water.getLastFloodingBatchSize();
+        return f.fingerprint();
+    };
+    int batch = -1;
+    const auto batched = twice(o, 30, &batch);
+    CHECK(batch == 7);
+    o.batching = false;
+    CHECK(twice(o, 30, nullptr) == batched);
+}
+
 TEST_CASE("threads: an action that writes a body, in the documented order and between buoyancy actions",
           "[bullet][threads]") {
     FleetOptions o;

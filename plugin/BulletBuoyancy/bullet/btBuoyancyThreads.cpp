@@ -172,12 +172,14 @@ void btBuoyancyWorld::evaluateBatch(const btCollisionWorld* from, double dt) {
                  [batch, from, dt](int i) { btBuoyancyWorldEvaluate(*batch[i], from, dt); });
 }
 
-void btBuoyancyWorld::evaluateFloodingBatch(const btCollisionWorld* from, double dt) {
+void btBuoyancyWorld::evaluateFloodingBatch(const btCollisionWorld* from, double dt, const btFloodingAction* caller) {
     // Off, or without a discrete dynamics world at hand (actions stepped by hand): each flooding action flows at its
     // own turn.
     const auto* world = m_batching ? dynamic_cast<const btDiscreteDynamicsWorld*>(from) : nullptr;
-    m_lastFloodingBatchSize = 0;
-    if (!world || m_floodingActions.empty()) return;
+    if (!world || m_floodingActions.empty()) {
+        m_lastFloodingBatchSize = 0;
+        return;
+    }
     const btAlignedObjectArray<btActionInterface*>& actions = WorldActions::of(*world);
     const std::size_t count = std::size_t(std::max(actions.size(), 0));
     const btActionInterface* const* seen = count > 0 ? &actions[0] : nullptr;
@@ -195,9 +197,10 @@ void btBuoyancyWorld::evaluateFloodingBatch(const btCollisionWorld* from, double
         }
         m_floodingBatchDirty = false;
     }
+    // Only a member starts the batch (the first one called in the substep): one left out flows on its own.
+    if (std::find(m_floodingBatch.begin(), m_floodingBatch.end(), caller) == m_floodingBatch.end()) return;
     const int n = int(m_floodingBatch.size());
     m_lastFloodingBatchSize = m_floodingBatch.size();
-    if (n == 0) return;
     struct InBatch {
         std::atomic<bool>& flag;
         explicit InBatch(std::atomic<bool>& f) : flag(f) { flag.store(true); }

@@ -284,9 +284,10 @@ public:
     /// Internal: flooding actions register and unregister themselves (their batch, evaluateFloodingBatch).
     void registerFloodingAction(btFloodingAction* action);
     void unregisterFloodingAction(btFloodingAction* action);
-    /// Internal (btFloodingAction::updateAction): with batching on, move the water of every registered flooding
-    /// action that is in `from`'s action array (once each) for a substep of dt seconds, across the threads.
-    void evaluateFloodingBatch(const btCollisionWorld* from, double dt);
+    /// Internal (btFloodingAction::updateAction): with batching on and `caller` one of them, move the water of every
+    /// registered flooding action that is in `from`'s action array (once each) for a substep of dt seconds, across
+    /// the threads.
+    void evaluateFloodingBatch(const btCollisionWorld* from, double dt, const btFloodingAction* caller);
 
 private:
     friend class btBuoyancyImmediate;  // sets the gravity vector of its private context

@@ -72,7 +72,7 @@ void btFloodingAction::updateAction(btCollisionWorld* collisionWorld, btScalar d
     if (!(dt > 0) || !std::isfinite(dt)) return;
     // The world's batch moves the water of every flooding action of this substep at the first one's turn; an action
     // outside the batch (batching off, not in a discrete dynamics world, or stepped by hand) flows here.
-    if (!m_flowed) m_world->evaluateFloodingBatch(collisionWorld, dt);
+    if (!m_flowed) m_world->evaluateFloodingBatch(collisionWorld, dt, this);
     if (!m_flowed) flow(dt);
     m_flowed = false;
     if (m_wake) m_body->getRigidBody()->activate();
