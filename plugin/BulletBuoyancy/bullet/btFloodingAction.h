@@ -37,7 +37,8 @@ class btFloodingAction : public btActionInterface {
 public:
     /// @param body   the body (not owned; remove this action before destroying it). Its current mass
     ///               properties are taken as the dry body's.
-    /// @param world  the buoyancy context (water surface, ρ_w, g, clock; not owned)
+    /// @param world  the buoyancy context (water surface, ρ_w, g, clock; not owned; must outlive this action, which
+    ///               registers with it for its batch)
     /// @param graph  the water graph, body (mesh) frame (validated here)
     /// @param holes  the permeable samples (permeableSamplesFromRegions / FromValues); empty: stays dry
     ///               unless water is set from code
