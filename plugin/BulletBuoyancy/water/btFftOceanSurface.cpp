@@ -177,7 +177,8 @@ void btFftOceanSurface::ensureVelocity(double t) const {
     if (t == m_tVelocity) return;
     const std::size_t nn = std::size_t(m_n) * m_n;
     // ∂h̃/∂t = −iω (h0 e^{−iωt} − conj(h0(−k)) e^{iωt}); horizontal ũ = ω k̂ (h0 e^{−iωt} − conj(h0(−k)) e^{iωt}).
-    std::vector<Complex> diff(nn);
+    std::vector<Complex>& diff = m_modes;  // scratch kept between calls: no allocation once sized
+    diff.resize(nn);
     for (int j = 0; j < m_n; ++j)
         for (int i = 0; i < m_n; ++i) {
             const std::size_t id = std::size_t(j) * m_n + i;
@@ -212,7 +213,8 @@ void btFftOceanSurface::ensureAcceleration(double t) const {
     // design.md 2.7, "The water's acceleration": ∂/∂t of the velocity's modes, ∂²h̃/∂t² = −ω² h̃ (each of h̃'s two
     // terms turns at ±ω), held in `second`: horizontal i k̂ · second = −i ω² k̂ h̃ (∂/∂t of ω k̂ (h0 e^{−iωt} −
     // conj(h0(−k)) e^{iωt})), vertical −ω² h̃.
-    std::vector<Complex> second(nn);
+    std::vector<Complex>& second = m_modes;
+    second.resize(nn);
     for (int j = 0; j < m_n; ++j)
         for (int i = 0; i < m_n; ++i) {
             const std::size_t id = std::size_t(j) * m_n + i;

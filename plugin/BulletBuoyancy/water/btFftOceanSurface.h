@@ -110,4 +110,5 @@ private:
     mutable double m_etaMin = 0, m_etaMax = 0;
     mutable double m_thirdDerivativeScale = 0;  // 1/m², at m_tHeights
     mutable std::vector<Complex> m_work;
+    mutable std::vector<Complex> m_modes;  ///< the velocity's or acceleration's modes before each component (scratch)
 };
