@@ -162,6 +162,21 @@ bool boxesApart(const std::array<Eigen::Vector2d, 3>& a, const std::array<Eigen:
     return false;
 }
 
+/// The region's planes: the three vertical sides of the prism over the counter-clockwise (x, z) triangle `t` (water
+/// frame).
+void setPrismSides(buoyancy::WaterRegion& region, const std::array<Eigen::Vector2d, 3>& t) {
+    region.planeCount = 0;
+    for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector2d& a = t[std::size_t(k)];
+        const Eigen::Vector2d& b = t[std::size_t((k + 1) % 3)];
+        // Positive area: the interior is left of a → b, the outward normal points right.
+        const Eigen::Vector3d normal = Eigen::Vector3d(b.y() - a.y(), 0, -(b.x() - a.x())).normalized();
+        const int i = region.planeCount++;
+        region.normal[i] = normal;
+        region.offset[i] = normal.x() * a.x() + normal.z() * a.y();
+    }
+}
+
 /// A convex piece of a region in water-frame coordinates, for the separating-axis test.
 struct ConvexPiece {
     std::vector<Eigen::Vector3d> vertices;
@@ -724,16 +739,7 @@ void btWaterBody::appendWaterRegions(const btWaterFrame& frame, std::vector<buoy
     case btWaterRegionKind::Polygon:
         // One vertical prism per footprint triangle: its three sides, already in the water frame.
         for (const std::array<int, 3>& t : footprintTriangles) {
-            region.planeCount = 0;
-            for (int k = 0; k < 3; ++k) {
-                const Eigen::Vector2d& a = footprint[std::size_t(t[std::size_t(k)])];
-                const Eigen::Vector2d& b = footprint[std::size_t(t[std::size_t((k + 1) % 3)])];
-                // Positive area: the interior is left of a → b, the outward normal points right.
-                const Eigen::Vector3d normal = Eigen::Vector3d(b.y() - a.y(), 0, -(b.x() - a.x())).normalized();
-                const int i = region.planeCount++;
-                region.normal[i] = normal;
-                region.offset[i] = normal.x() * a.x() + normal.z() * a.y();
-            }
+            setPrismSides(region, {footprint[std::size_t(t[0])], footprint[std::size_t(t[1])], footprint[std::size_t(t[2])]});
             out.push_back(region);
         }
         return;
@@ -743,16 +749,7 @@ void btWaterBody::appendWaterRegions(const btWaterFrame& frame, std::vector<buoy
             for (std::size_t t = 0; t < meshTriangles.size(); ++t) {
                 const FrameTriangle f = frameTriangle(*this, frame, t);
                 if (f.facing <= 0) continue;
-                const std::array<Eigen::Vector2d, 3> shadow = shadowOf(f);
-                region.planeCount = 0;
-                for (int k = 0; k < 3; ++k) {
-                    const Eigen::Vector2d& a = shadow[std::size_t(k)];
-                    const Eigen::Vector2d& b = shadow[std::size_t((k + 1) % 3)];
-                    const Eigen::Vector3d normal = Eigen::Vector3d(b.y() - a.y(), 0, -(b.x() - a.x())).normalized();
-                    const int i = region.planeCount++;
-                    region.normal[i] = normal;
-                    region.offset[i] = normal.x() * a.x() + normal.z() * a.y();
-                }
+                setPrismSides(region, shadowOf(f));
                 out.push_back(region);
             }
             return;
