@@ -343,30 +343,26 @@ void btFftOceanSurface::heights(const double* x, const double* z, std::size_t n,
 
 void btFftOceanSurface::velocities(const double* x, const double* y, const double* z, std::size_t n, double t,
                                    double* outVx, double* outVy, double* outVz) const {
-    withFields(t, Fields::Velocity, [&] {
-        for (std::size_t i = 0; i < n; ++i) {
-            double x0, z0;
-            restPosition(x[i], z[i], x0, z0);
-            const double decay = std::exp(std::min(0.0, m_kPeak * (y[i] - m_s.height)));
-            outVx[i] = decay * sampleField(m_velX, x0, z0);
-            outVy[i] = decay * sampleField(m_velY, x0, z0);
-            outVz[i] = decay * sampleField(m_velZ, x0, z0);
-        }
-    });
+    withFields(t, Fields::Velocity, [&] { sampleDecayed(m_velX, m_velY, m_velZ, x, y, z, n, outVx, outVy, outVz); });
+}
+
+void btFftOceanSurface::sampleDecayed(const std::vector<double>& fx, const std::vector<double>& fy,
+                                      const std::vector<double>& fz, const double* x, const double* y, const double* z,
+                                      std::size_t n, double* outX, double* outY, double* outZ) const {
+    for (std::size_t i = 0; i < n; ++i) {
+        double x0, z0;
+        restPosition(x[i], z[i], x0, z0);
+        const double decay = std::exp(std::min(0.0, m_kPeak * (y[i] - m_s.height)));
+        outX[i] = decay * sampleField(fx, x0, z0);
+        outY[i] = decay * sampleField(fy, x0, z0);
+        outZ[i] = decay * sampleField(fz, x0, z0);
+    }
 }
 
 void btFftOceanSurface::accelerations(const double* x, const double* y, const double* z, std::size_t n, double t,
                                       double* outAx, double* outAy, double* outAz) const {
-    withFields(t, Fields::Acceleration, [&] {
-        for (std::size_t i = 0; i < n; ++i) {
-            double x0, z0;
-            restPosition(x[i], z[i], x0, z0);
-            const double decay = std::exp(std::min(0.0, m_kPeak * (y[i] - m_s.height)));
-            outAx[i] = decay * sampleField(m_accX, x0, z0);
-            outAy[i] = decay * sampleField(m_accY, x0, z0);
-            outAz[i] = decay * sampleField(m_accZ, x0, z0);
-        }
-    });
+    withFields(t, Fields::Acceleration,
+               [&] { sampleDecayed(m_accX, m_accY, m_accZ, x, y, z, n, outAx, outAy, outAz); });
 }
 
 void btFftOceanSurface::heightBounds(double, double, double, double, double t, double& outMin, double& outMax) const {

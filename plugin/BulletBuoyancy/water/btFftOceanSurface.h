@@ -98,6 +98,11 @@ private:
     void inverseFft2(std::vector<Complex>& data) const;
     double sampleField(const std::vector<double>& f, double x, double z) const;
     void restPosition(double x, double z, double& x0, double& z0) const;  // requires fields at t
+    /// The vector field (fx, fy, fz) at the n points, decayed with depth as the peak wavenumber's mode (velocities,
+    /// accelerations). Requires fields at t.
+    void sampleDecayed(const std::vector<double>& fx, const std::vector<double>& fy, const std::vector<double>& fz,
+                       const double* x, const double* y, const double* z, std::size_t n, double* outX, double* outY,
+                       double* outZ) const;
 
     btFftOceanSettings m_s;
     int m_n;
