@@ -172,21 +172,26 @@ void btFftOceanSurface::ensureHeights(double t) const {
     m_tHeights = t;
 }
 
-void btFftOceanSurface::ensureVelocity(double t) const {
-    ensureHeights(t);
-    if (t == m_tVelocity) return;
-    const std::size_t nn = std::size_t(m_n) * m_n;
-    // ∂h̃/∂t = −iω (h0 e^{−iωt} − conj(h0(−k)) e^{iωt}); horizontal ũ = ω k̂ (h0 e^{−iωt} − conj(h0(−k)) e^{iωt}).
-    std::vector<Complex>& diff = m_modes;  // scratch kept between calls: no allocation once sized
-    diff.resize(nn);
+void btFftOceanSurface::fillTimeModes(double t, bool acceleration) const {
+    m_modes.resize(std::size_t(m_n) * m_n);  // scratch kept between calls: no allocation once sized
     for (int j = 0; j < m_n; ++j)
         for (int i = 0; i < m_n; ++i) {
             const std::size_t id = std::size_t(j) * m_n + i;
             const std::size_t neg = std::size_t((m_n - j) % m_n) * m_n + std::size_t((m_n - i) % m_n);
             const double w = m_omega[id];
             const Complex e(std::cos(w * t), -std::sin(w * t));
-            diff[id] = w * (m_h0[id] * e - std::conj(m_h0[neg]) * std::conj(e));
+            const Complex a = m_h0[id] * e, b = std::conj(m_h0[neg]) * std::conj(e);
+            m_modes[id] = acceleration ? -(w * w) * (a + b) : w * (a - b);
         }
+}
+
+void btFftOceanSurface::ensureVelocity(double t) const {
+    ensureHeights(t);
+    if (t == m_tVelocity) return;
+    const std::size_t nn = std::size_t(m_n) * m_n;
+    // ∂h̃/∂t = −iω (h0 e^{−iωt} − conj(h0(−k)) e^{iωt}); horizontal ũ = ω k̂ (h0 e^{−iωt} − conj(h0(−k)) e^{iωt}).
+    fillTimeModes(t, false);
+    const std::vector<Complex>& diff = m_modes;
     for (int c = 0; c < 3; ++c) {
         m_work = diff;
         for (int j = 0; j < m_n; ++j)
@@ -213,16 +218,8 @@ void btFftOceanSurface::ensureAcceleration(double t) const {
     // design.md 2.7, "The water's acceleration": ∂/∂t of the velocity's modes, ∂²h̃/∂t² = −ω² h̃ (each of h̃'s two
     // terms turns at ±ω), held in `second`: horizontal i k̂ · second = −i ω² k̂ h̃ (∂/∂t of ω k̂ (h0 e^{−iωt} −
     // conj(h0(−k)) e^{iωt})), vertical −ω² h̃.
-    std::vector<Complex>& second = m_modes;
-    second.resize(nn);
-    for (int j = 0; j < m_n; ++j)
-        for (int i = 0; i < m_n; ++i) {
-            const std::size_t id = std::size_t(j) * m_n + i;
-            const std::size_t neg = std::size_t((m_n - j) % m_n) * m_n + std::size_t((m_n - i) % m_n);
-            const double w = m_omega[id];
-            const Complex e(std::cos(w * t), -std::sin(w * t));
-            second[id] = -(w * w) * (m_h0[id] * e + std::conj(m_h0[neg]) * std::conj(e));
-        }
+    fillTimeModes(t, true);
+    const std::vector<Complex>& second = m_modes;
     // The fields are real, their spectra Hermitian: x and y go through one transform as its real and imaginary parts
     // (IFFT(S_x + i S_y) = a_x + i a_y), z through a second.
     for (int pass = 0; pass < 2; ++pass) {

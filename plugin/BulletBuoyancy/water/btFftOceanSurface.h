@@ -116,4 +116,7 @@ private:
     mutable double m_thirdDerivativeScale = 0;  // 1/m², at m_tHeights
     mutable std::vector<Complex> m_work;
     mutable std::vector<Complex> m_modes;  ///< the velocity's or acceleration's modes before each component (scratch)
+    /// m_modes = s(ω) (h0 e^{−iωt} ± conj(h0(−k)) e^{iωt}) for every mode, with s(ω) = ω and "−" (the velocity's
+    /// modes) or s(ω) = −ω² and "+" (the acceleration's).
+    void fillTimeModes(double t, bool acceleration) const;
 };
