@@ -90,7 +90,8 @@ def main():
                                  "ballast": [{"position": [0, -0.4, 0], "mass": 10}],
                                  "buoyancy": {"method": "exact-coverage", "texture": 64, "drag_coefficient": 1,
                                               "skin_friction": 0.01, "linear_damping": 0.3, "radiation_damping": 0.3, "added_mass": True,
-                                              "added_mass_coefficient": 0.5}},
+                                              "added_mass_coefficient": 0.5,
+                                              "added_mass_waterplane_coefficient": 0.2}},
                                 {"name": "m", "shape": {"type": "mesh", "file": "x.obj", "scale": 2}, "mass": 3}]},
     }
     for name, scene in edge.items():

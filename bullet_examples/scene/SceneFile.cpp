@@ -79,7 +79,7 @@ SceneShape readShape(const Reader& r, const json& j, const std::string& key, con
 btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::string& key) {
     r.requireObject(j, key);
     r.allowKeys(j, key, {"method", "texture", "drag_coefficient", "skin_friction", "linear_damping", "radiation_damping", "added_mass",
-                         "added_mass_coefficient", "water_acceleration", "error_budget", "drag_clusters", "water_patch_nodes",
+                         "added_mass_coefficient", "added_mass_waterplane_coefficient", "water_acceleration", "error_budget", "drag_clusters", "water_patch_nodes",
                          "water_patch_nodes_per_wavelength", "hydrostatics_interval",
                          "hydrostatics_reuse_tolerance"});
     btBuoyancySettings b;
@@ -116,6 +116,9 @@ btBuoyancySettings readBuoyancy(const Reader& r, const json& j, const std::strin
     if (j.contains("added_mass")) b.addedMass = r.boolean(j["added_mass"], key + ".added_mass");
     if (j.contains("added_mass_coefficient"))
         b.addedMassCoefficient = r.number(j["added_mass_coefficient"], key + ".added_mass_coefficient", 0, 100);
+    if (j.contains("added_mass_waterplane_coefficient"))
+        b.addedMassWaterplaneCoefficient = r.number(j["added_mass_waterplane_coefficient"],
+                                                    key + ".added_mass_waterplane_coefficient", 0, 100);
     if (j.contains("water_acceleration")) {
         const std::string m = r.string(j["water_acceleration"], key + ".water_acceleration");
         if (m == "none") b.waterAcceleration = btWaterAccelerationForce::None;

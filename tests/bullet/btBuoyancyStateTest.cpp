@@ -328,14 +328,14 @@ TEST_CASE("save and restore: bodies coming to rest in calm water fall asleep at 
     const Snapshot snapshot = scene.save();
     int awakeAtSave = 0;
     for (const auto& b : scene.bodies) awakeAtSave += b->getRigidBody()->isActive() ? 1 : 0;
-    const std::vector<unsigned char> first = scene.run(1200);
+    const std::vector<unsigned char> first = scene.run(1680);
     int asleep = 0;
     for (const auto& b : scene.bodies) asleep += b->getRigidBody()->getActivationState() == ISLAND_SLEEPING ? 1 : 0;
     INFO("awake at the save: " << awakeAtSave << ", asleep at the end: " << asleep);
     CHECK(awakeAtSave >= 6);
     CHECK(asleep >= 1);
     scene.restore(snapshot);
-    const std::vector<unsigned char> again = scene.run(1200);
+    const std::vector<unsigned char> again = scene.run(1680);
     INFO(firstDifference(first, again));
     REQUIRE(first.size() == again.size());
     CHECK(std::memcmp(first.data(), again.data(), first.size()) == 0);

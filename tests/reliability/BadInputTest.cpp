@@ -52,7 +52,8 @@ bool same(const btBuoyancySettings& a, const btBuoyancySettings& b) {
     return a.method == b.method && a.textureSize == b.textureSize && a.preferModelUvs == b.preferModelUvs &&
            a.dragCoefficient == b.dragCoefficient && a.skinFriction == b.skinFriction &&
            a.linearDamping == b.linearDamping && a.radiationDamping == b.radiationDamping && a.addedMass == b.addedMass &&
-           a.addedMassCoefficient == b.addedMassCoefficient && a.buoyancyEnabled == b.buoyancyEnabled;
+           a.addedMassCoefficient == b.addedMassCoefficient &&
+           a.addedMassWaterplaneCoefficient == b.addedMassWaterplaneCoefficient && a.buoyancyEnabled == b.buoyancyEnabled;
 }
 
 /// Snapshot of everything a buoyant body's state is made of.
@@ -223,6 +224,8 @@ TEST_CASE("bad input: buoyancy settings, rejected everywhere and never half-appl
          "radiationDamping: must be in 0..10 (got 11.000000)"},
         {"negative added mass", [](btBuoyancySettings& s) { s.addedMassCoefficient = -2; },
          "addedMassCoefficient: must be a finite number >= 0 (got -2.000000)"},
+        {"NaN waterplane added mass", [](btBuoyancySettings& s) { s.addedMassWaterplaneCoefficient = kNaN; },
+         "addedMassWaterplaneCoefficient: must be a finite number >= 0 (got nan)"},
         {"method out of the enum", [](btBuoyancySettings& s) { s.method = static_cast<btBuoyancyMethod>(42); },
          "method: not a btBuoyancyMethod value"},
     };

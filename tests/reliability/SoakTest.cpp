@@ -66,6 +66,7 @@ btBuoyancySettings randomBuoyancy(std::mt19937& rng) {
     s.linearDamping = u(rng) < 0.2 ? 0.0 : u(rng);
     s.addedMass = u(rng) < 0.8;
     s.addedMassCoefficient = u(rng);
+    s.addedMassWaterplaneCoefficient = 0.4 * u(rng);
     s.buoyancyEnabled = u(rng) < 0.95;
     return s;
 }

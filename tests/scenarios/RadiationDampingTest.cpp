@@ -132,7 +132,9 @@ TEST_CASE("radiation damping scales with the body and fades to zero three body s
     h.waterline_area = M_PI * R * R;
     Eigen::Isometry3d surface = Eigen::Isometry3d::Identity();
     const double floating = a.linearDampingNow(h, surface);
-    const double ma = bs.addedMassCoefficient * kRho * 0.5 * V;
+    // The heave added mass (design.md 2.7): the larger of C_a ρ V_sub and c_wp ρ A_wl^(3/2).
+    const double ma = std::max(bs.addedMassCoefficient * kRho * 0.5 * V,
+                               bs.addedMassWaterplaneCoefficient * kRho * std::pow(h.waterline_area, 1.5));
     CHECK(floating == Approx(bs.linearDamping + bs.radiationDamping * std::sqrt(kG * (m + ma) / (kRho * h.waterline_area)))
                           .epsilon(1e-6));
 }

@@ -208,7 +208,10 @@ TEST_CASE("scene zup_plank.json: a Z-up world (gravity -z, water frame up +z) fl
     std::printf("zup_plank: mean centre z %.4f, range %.3f; mean y %.2e, range %.2e\n", z, zRange, y, yRange);
     CHECK(std::abs(z) < 0.02);
     CHECK(zRange > 0.1);   // heaving with the swell (wave height 0.2 m)
-    CHECK(zRange < 0.25);
+    // Linear theory's heave response of a wall-sided body to a long wave, 1 / (1 − (T_n / T)²) undamped: with
+    // T_n = 2π sqrt((m + m_a) / (ρ g A)) = 1.39 s (m 400 kg, A 2 m², heave added mass 0.2 ρ A^(3/2) = 566 kg,
+    // design.md 2.7) and T = 2.77 s, 1.34: a range of 0.27 m at most.
+    CHECK(zRange < 0.28);
     // Almost nothing along y: the swell runs along x. The box's triangulation is not mirror-symmetric, so on curved
     // water (the quadratic over each triangle) the lateral force is not exactly 0: the plank drifts by 1.2e-5 m in 10 s
     // in both precisions, and the Y-up copy of this scene drifts by the same along its −z (measured, to 1e-14 m).

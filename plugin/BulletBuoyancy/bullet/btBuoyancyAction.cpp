@@ -445,6 +445,16 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     linearPower = sum[10];
 }
 
+Eigen::Vector3d btBuoyancyAction::addedMassOf(const buoyancy::HydrostaticsResult& h, double rho) const {
+    if (!m_settings.addedMass) return Eigen::Vector3d::Zero();
+    // design.md 2.7, "Added mass": C_a ρ V_sub across the water's up; along it the larger of that and the
+    // waterplane's c_wp ρ A_wp^(3/2) (a flat floating body's heave added mass is set by its waterplane).
+    const double volumeTerm = m_settings.addedMassCoefficient * rho * std::max(h.submerged_volume, 0.0);
+    const double area = std::isfinite(h.waterline_area) ? std::max(h.waterline_area, 0.0) : 0.0;
+    const double waterplaneTerm = m_settings.addedMassWaterplaneCoefficient * rho * area * std::sqrt(area);
+    return Eigen::Vector3d(volumeTerm, std::max(volumeTerm, waterplaneTerm), volumeTerm);
+}
+
 double btBuoyancyAction::linearDampingAt(const buoyancy::HydrostaticsResult& h, double topDepth) const {
     // design.md 2.6, "Radiation damping": b = b_v + β g / ω_n · e^(−2 k d) · (1 − d / 3D)², zero from d = 3D down.
     const double viscous = m_settings.linearDamping;
@@ -459,8 +469,7 @@ double btBuoyancyAction::linearDampingAt(const buoyancy::HydrostaticsResult& h, 
     const double invMass = double(m_body->getInvMass());
     if (!(invMass > 0) || !(g > 0) || !(rho > 0)) return viscous;
     const double m = 1.0 / invMass;
-    const double sub = std::max(h.submerged_volume, 0.0);
-    const double ma = m_settings.addedMass ? m_settings.addedMassCoefficient * rho * sub : 0.0;
+    const double ma = addedMassOf(h, rho).y();  // heave
     // Heave frequency ω_n² = ρ g A_ref / (m + m_a): the waterline area, at least ½ V^(2/3) so that a body leaving or
     // entering the water (A_waterline → 0) or under it keeps a finite frequency of its own size.
     const double volume23 = std::cbrt(m_shape->getUnitSolid().volume) * std::cbrt(m_shape->getUnitSolid().volume);
@@ -499,14 +508,14 @@ void btBuoyancyAction::dragEvaluationVelocity(const buoyancy::HydrostaticsResult
     // substep (water bodies), or the unbounded water's as it is now.
     const double rho = m_world->getWaterBodies().empty() ? m_world->getFluidDensity() : m_activeDensity;
     const double m = 1.0 / double(m_body->getInvMass());
-    const double ma = m_settings.addedMass ? m_settings.addedMassCoefficient * rho * std::max(h.submerged_volume, 0.0) : 0.0;
-    const double meff = m + ma;
+    const Eigen::Vector3d ma = addedMassOf(h, rho);  // per water axis
+    const Eigen::Vector3d meff = Eigen::Vector3d::Constant(m) + ma;
     // In the water frame, as h (btWaterFrame: a rotation of the world's vectors).
     const btWaterFrame& frame = m_world->getWaterFrame();
     const Eigen::Vector3d gravityAcc = frame.toWaterVector(toEigen(m_body->getGravity()));
     v = frame.toWaterVector(toEigen(m_body->getLinearVelocity()));
     w = frame.toWaterVector(toEigen(m_body->getAngularVelocity()));
-    v += ((h.force - ma * gravityAcc) * dt) / meff + gravityAcc * dt;
+    v += ((h.force - ma.cwiseProduct(gravityAcc)) * dt).cwiseQuotient(meff) + gravityAcc * dt;
     w += frame.toWaterVector(toEigen(m_body->getInvInertiaTensorWorld() *
                                      toBullet(frame.toWorldVector(Eigen::Vector3d(h.torque * dt)))));
 }
@@ -821,11 +830,11 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         }
     }
 
-    // Added mass (design.md 2.7), one scalar on the linear motion: (m + m_a) a = F − m g. Bullet already
-    // applies −g·dt, so the impulse is J = m/(m + m_a)·(F + m_a g_up)·dt.
+    // Added mass (design.md 2.7) on the linear motion, per axis of the water frame (heave along up, the rest across
+    // it): (m + m_a) a = F − m g. Bullet already applies −g·dt, so the impulse is J = m/(m + m_a)·(F + m_a g_up)·dt.
     const double m = 1.0 / double(m_body->getInvMass());
-    const double ma = m_settings.addedMass ? m_settings.addedMassCoefficient * rho * std::max(h.submerged_volume, 0.0) : 0.0;
-    const double meff = m + ma;
+    const Eigen::Vector3d ma = addedMassOf(h, rho);
+    const Eigen::Vector3d meff = Eigen::Vector3d::Constant(m) + ma;
     const Eigen::Vector3d gravityAcc = frame.toWaterVector(toEigen(m_body->getGravity()));
 
     // The water's acceleration Du/Dt (design.md 2.7, "The water's acceleration"), at the centre of buoyancy, one
@@ -839,14 +848,14 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     Eigen::Vector3d waterForce = Eigen::Vector3d::Zero();     // m_a Du/Dt [+ ρ V_sub Du/Dt], N
     Eigen::Vector3d replacedPressure = Eigen::Vector3d::Zero(); // [F_p − ρ g V_sub ŷ], N
     bool waterForceOn = false;
-    if (accelerationModel != btWaterAccelerationForce::None && (ma > 0 || froudeKrylov) && h.submerged_volume > 0 &&
+    if (accelerationModel != btWaterAccelerationForce::None && (ma.y() > 0 || froudeKrylov) && h.submerged_volume > 0 &&
         water->isTimeVarying()) {
         const Eigen::Vector3d& cb = h.centre_of_buoyancy;
         double du[3] = {0, 0, 0};
         water->accelerations(&cb.x(), &cb.y(), &cb.z(), 1, time, &du[0], &du[1], &du[2]);
         const Eigen::Vector3d acceleration(du[0], du[1], du[2]);
         if (acceleration.allFinite() && cb.allFinite()) {
-            waterForce = ma * acceleration;
+            waterForce = ma.cwiseProduct(acceleration);
             if (froudeKrylov) {
                 const double displaced = rho * h.submerged_volume;  // ρ V_sub, kg
                 waterForce += displaced * acceleration;
@@ -889,7 +898,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         exact.dragTorque = dragT;
         exact.linearVelocity = v;
         exact.angularVelocity = w;
-        recordHydrostatics(substep, exact, meff, dt);
+        recordHydrostatics(substep, exact, meff.y(), dt);  // the heave's
     }
 
     // Drag solved at the end-of-step velocity (design.md 2.6, "Implicit drag"): the impulse (J, L) is scaled by s so
@@ -901,7 +910,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // pure quadratic drag along a fixed direction the exact implicit step, whose terminal velocity is the drag law's
     // at any dt. The second bound s ≤ a|V|²/|Δ|² keeps |V'|² ≤ |V|²(1 − s a) when Δ is not parallel to V: the drag
     // never adds relative kinetic energy nor reverses the relative motion.
-    double s = 1.0;
+    double sLinear = 1.0, sAngular = 1.0;
     if (dragOn) {
         const Eigen::Vector3d J = dragF * dt, L = dragT * dt;
         const Eigen::Vector3d vr = v - uMean;
@@ -917,29 +926,47 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
             if (invI[k] > 0) rotE += wl[k] * wl[k] / invI[k];
             rotD += invI[k] * Ll[k] * Ll[k];
         }
-        const double V2 = meff * vr.squaredNorm() + rotE;
-        const double D2 = J.squaredNorm() / meff + rotD;
+        const double linE = meff.dot(vr.cwiseProduct(vr)), linD = J.cwiseProduct(J).dot(meff.cwiseInverse());
         const double power = dragF.dot(vr) + dragT.dot(w);  // W, < 0 when the drag removes energy
         if (dragComputed) m_linearShare = power < 0 ? std::min(std::max(linearPower / power, 0.0), 1.0) : 0.0;
-        const double a = V2 > 0 ? -(J.dot(vr) + L.dot(w)) / V2 : 0.0;
-        if (a > 0 && D2 > 0) {
-            const double al = m_linearShare * a, aq = a - al;
+        // The scale for a block with energy V2 (in the metric), drag change D2 and removed fraction a.
+        const double share = m_linearShare;
+        const auto implicitScale = [share](double a, double V2, double D2) {
+            if (!(a > 0 && D2 > 0)) return 1.0;
+            const double al = share * a, aq = a - al;
             const double x = 2.0 / ((1.0 + al) + std::sqrt((1.0 + al) * (1.0 + al) + 4.0 * aq));
-            s = std::min((aq * x * x + al * x) / a, a * V2 / D2);
-        }
+            return std::min((aq * x * x + al * x) / a, a * V2 / D2);
+        };
+        const double V2 = linE + rotE, D2 = linD + rotD;
+        const double a = V2 > 0 ? -(J.dot(vr) + L.dot(w)) / V2 : 0.0;
+        const double s = implicitScale(a, V2, D2);
+        // Each block (linear, angular) on its own where its drag removes its energy: a body whose heave carries most
+        // of the metric (a light body with a large heave added mass) keeps its rotation's damping implicit too.
+        const double aLinear = linE > 0 ? -J.dot(vr) / linE : 0.0, aAngular = rotE > 0 ? -L.dot(w) / rotE : 0.0;
+        sLinear = aLinear > 0 ? implicitScale(aLinear, linE, linD) : s;
+        sAngular = aAngular > 0 ? implicitScale(aAngular, rotE, rotD) : s;
     }
-    dragF *= s;
-    dragT *= s;
+    dragF *= sLinear;
+    dragT *= sAngular;
 
     // Priming: the body's velocity is meant as the velocity after every kick at its current pose, but in
     // the first substep after creation or wake-up Bullet applied gravity (and integrated) with no buoyancy
     // kick for the starting pose. Give that missed hydrostatic kick once (evaluated at the current pose),
     // else a neutrally buoyant body keeps the −g·dt it got and drifts (design.md 3, symplectic Euler).
     const double prime = m_needsPrime ? 2.0 : 1.0;
-    Eigen::Vector3d linearForce = prime * (h.force - ma * gravityAcc) + dragF;
+    Eigen::Vector3d linearForce = prime * (h.force - ma.cwiseProduct(gravityAcc)) + dragF;
+    // A heave added mass that grew since the last substep (a body entering the water, a waterplane widening): the
+    // momentum form d/dt((m + m_a) v) = F keeps (m + m_a) v relative to the water across the change (von Kármán's
+    // water entry, design.md 2.7), a force −Δm_a v_rel / dt along up; a shrinking one gives nothing back. Without it a
+    // light body meeting a large added mass keeps its speed and gains the energy ½ Δm_a v². Not at a priming substep
+    // (a body placed in the water, or waking up: its water moves with it).
+    if (!m_needsPrime && ma.y() > m_result.addedMass) {
+        const double relative = frame.toWaterVector(toEigen(m_body->getLinearVelocity())).y() - uMean.y();
+        linearForce.y() -= (ma.y() - m_result.addedMass) * relative / dt;
+    }
     // (Flat or steady water: not even a zero added. The priming gives the replaced pressure's kick twice too.)
     if (waterForceOn) linearForce += waterForce - prime * replacedPressure;
-    const Eigen::Vector3d linearImpulse = (m / meff) * (linearForce * dt);
+    const Eigen::Vector3d linearImpulse = (m * linearForce * dt).cwiseQuotient(meff);
     const Eigen::Vector3d angularImpulse = (prime * h.torque + dragT) * dt;
 
     // Back to the world (the result and the impulses are world-frame).
@@ -951,7 +978,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     m_result.dragTorque = toBullet(frame.toWorldVector(dragT));
     m_result.wettedArea = h.wetted_area;
     m_result.waterlineArea = h.waterline_area;
-    m_result.addedMass = ma;
+    m_result.addedMass = ma.y();
     m_result.time = time;
     m_result.predicted = predicted;
     {

@@ -45,7 +45,9 @@ struct btBuoyancyResult {
     btVector3 dragTorque = btVector3(0, 0, 0);       ///< about the COM, N·m
     double wettedArea = 0;                      ///< m²
     double waterlineArea = 0;                   ///< m²
-    double addedMass = 0;                       ///< m_a applied this substep, kg
+    /// The heave added mass applied this substep (along the water's up), kg; across it the added mass is C_a ρ V_sub
+    /// (btBuoyancySettings::addedMassCoefficient, design.md 2.7).
+    double addedMass = 0;
     double time = 0;                            ///< water time of the evaluation, s
     /// The linear impulse applied at the centre of mass this substep (buoyancy, drag and added mass together; zero
     /// when nothing was applied), N·s.
@@ -231,6 +233,11 @@ private:
                      const Eigen::Vector3d& v, const Eigen::Vector3d& w, double density, double time,
                      Eigen::Vector3d& force, Eigen::Vector3d& torque, Eigen::Vector3d& meanWaterVelocity,
                      double& linearPower, bool reuseWater = false);
+    /// The added mass of this substep's submerged part (design.md 2.7), kg, per axis of the water frame: across the
+    /// water's up (x, z) C_a ρ V_sub; along it (y, heave) at least the waterplane's c_wp ρ A_waterline^(3/2)
+    /// (btBuoyancySettings::addedMassWaterplaneCoefficient). Zeros without btBuoyancySettings::addedMass.
+    /// @param rho  the water's density, kg/m³
+    Eigen::Vector3d addedMassOf(const buoyancy::HydrostaticsResult& h, double rho) const;
     /// linearDampingNow given the depth of the top of the body's bounding sphere under the water (m, ≥ 0).
     double linearDampingAt(const buoyancy::HydrostaticsResult& h, double topDepth) const;
     /// Temporal level of detail: fill `predicted` with this substep's extrapolated evaluation and return true,

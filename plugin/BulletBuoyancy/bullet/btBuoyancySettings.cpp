@@ -79,6 +79,7 @@ void btBuoyancySettings::validate() const {
     if (linearDamping > 100)
         throw std::invalid_argument("linearDamping: must be in 0..100 m/s (got " + std::to_string(linearDamping) + ")");
     requireNonNegative(addedMassCoefficient, "addedMassCoefficient");
+    requireNonNegative(addedMassWaterplaneCoefficient, "addedMassWaterplaneCoefficient");
     if (waterAcceleration != btWaterAccelerationForce::None && waterAcceleration != btWaterAccelerationForce::AddedMass &&
         waterAcceleration != btWaterAccelerationForce::AddedMassAndFroudeKrylov)
         throw std::invalid_argument("waterAcceleration: not a btWaterAccelerationForce (got " +

@@ -141,10 +141,15 @@ struct btBuoyancySettings {
     double hydrostaticsReuseTolerance = 1e-4;
 
     ///@name Added mass (design.md 2.7)
-    /// Apply added mass m_a = C_a ρ_w V_sub to the linear motion (one scalar, Stonefish-style; rotation has
-    /// none). Keeps light bodies (density ratio ≪ 1) stable at game time steps.
+    /// Apply added mass to the linear motion (rotation has none): C_a ρ_w V_sub across the water's up, and along it
+    /// (heave) the larger of that and the waterplane's c_wp ρ_w A_waterline^(3/2). Keeps light bodies (density
+    /// ratio ≪ 1) stable at game time steps and gives flat floating bodies their heave period.
     bool addedMass = true;
     double addedMassCoefficient = 0.5; ///< C_a, dimensionless, ≥ 0; 0.5 is exact for a fully submerged sphere
+    /// c_wp, dimensionless, ≥ 0 (0: C_a ρ_w V_sub along up too). The default 0.2 gives a floating square plate 0.88
+    /// of its high-frequency heave added mass (DNV-RP-H103: 0.227 ρ_w A^(3/2)) and a half-immersed sphere 0.53 of
+    /// its displaced mass (Hulme: 0.43–0.83 over the frequencies of its heave); see design.md 2.7.
+    double addedMassWaterplaneCoefficient = 0.2;
     /// How the water's own acceleration Du/Dt (btWaterSurface::accelerations at the centre of buoyancy, one query per
     /// body and substep, only under water that changes over time) acts on the linear motion (design.md 2.7, "The
     /// water's acceleration"). Default None (no query): the terms take Du/Dt at one point, right for bodies small
