@@ -175,7 +175,7 @@ TEST_CASE("crate splash: the falling crate sends rings out through the interacti
     double ring = 0;
     run(*ex, 3.0, [&] { ring = std::max(ring, ringDeviation()); });
     INFO("ring deviation before the crate lands " << before << " m, after " << ring << " m");
-    CHECK(ring > 0.02);          // a wave of centimetres passed the ring
+    CHECK(ring > 0.01);          // a wave of a centimetre or more passed the ring
     CHECK(ring > 5 * before);    // and it came from the crate
 }
 
