@@ -349,7 +349,8 @@ TEST_CASE("property: random poses, velocities and densities stay finite, bounded
 // The light floating bodies at game time steps, 0.3 m cubes at s ≈ 0.011 at 30 Hz (draft 3.4 mm: heave ω·dt ≈ 1.5 with
 // added mass, roll ω·dt ≈ 1.2 with none, design.md 2.7), also come to rest at the defaults, whose wave-radiation
 // damping scales with the body and fades with depth (design.md 2.6): 3000 cases, 0 non-finite, 0 unbounded, 0 not at
-// rest (worst final speed 0.109 m/s) in both precisions, 36 s (float) to 55 s (double) on one core.
+// rest in both precisions (worst final speed 0.195 m/s with the waterplane's heave added mass, design.md 2.7; 0.109 m/s
+// with the volume rule alone), about 50 s on one core.
 TEST_CASE("property (long): thousands of random cases", "[bullet][hard][property][long]") {
     propertyTest(3000, 987654u, {30.0, 60.0, 120.0, 240.0}, 20.0);
 }
