@@ -19,7 +19,7 @@ AccuracyReport measureAccuracy(const TriangleMesh& mesh, BuoyancyMethod requeste
     AccuracyReport rep;
     // Through btBuoyancyShape: the same pipeline (method choice, UVs, bake, mass properties) a body gets.
     btBuoyancySettings settings;
-    settings.method = btBuoyancyMethodFromName(buoyancyMethodName(requested));
+    settings.method = requested;  // btBuoyancyMethod is buoyancy::BuoyancyMethod
     settings.textureSize = texture;
     const auto shape = btBuoyancyShape::create(mesh, settings);
     const bool sampled = shape->getMethod() != btBuoyancyMethod::ExactMesh;
