@@ -803,7 +803,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
             } else if (flat && bc.y() + br <= flatH && !m_deformable) {
                 h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (design.md 2.5)
             } else {
-                btBuoyancyDeviceBackend* dev = method.sampled ? m_world->getDeviceBackend() : nullptr;  // batched
+                btBuoyancyDeviceBackend* dev = method.deviceBatched ? m_world->getDeviceBackend() : nullptr;
                 if (dev && dev->hydrostatics(*this, pose, com, h))
                     onDevice = true;
                 else

@@ -105,7 +105,8 @@ HydrostaticsResult evaluateSampled(const MethodGeometry& geometry, const Eigen::
                                water.torqueReference, *water.workspace, water.cache, water.patch);
 }
 
-IntegrationMethod entry(BuoyancyMethod method, const char* name, bool sampled, BakeMethod bake, int textureSize,
+IntegrationMethod entry(BuoyancyMethod method, const char* name, bool sampled, bool deviceBatched, BakeMethod bake,
+                        int textureSize,
                         void (*prepare)(const TriangleMesh&, const PrepareOptions&, PreparedShape&),
                         HydrostaticsResult (*evaluate)(const MethodGeometry&, const Eigen::Isometry3d&,
                                                        const MethodWater&)) {
@@ -113,6 +114,7 @@ IntegrationMethod entry(BuoyancyMethod method, const char* name, bool sampled, B
     m.method = method;
     m.name = name;
     m.sampled = sampled;
+    m.deviceBatched = deviceBatched;
     m.bake = bake;
     m.defaultTextureSize = textureSize;
     m.prepare = prepare;
@@ -126,12 +128,13 @@ const std::vector<IntegrationMethod>& integrationMethods() {
     // Default texture sizes: 512 for texel-centre (the paper's own smallest size); 128 for exact-coverage, which
     // meets the default accuracy goals (docs/accuracy.md) on the shapes and models we test.
     static const std::vector<IntegrationMethod> methods = {
-        entry(BuoyancyMethod::TexelCentre, "texel-centre", true, BakeMethod::TexelCentre, 512, prepareTexelCentre,
-              evaluateSampled),
-        entry(BuoyancyMethod::ExactCoverage, "exact-coverage", true, BakeMethod::ExactCoverage, 128,
+        //    method                        name              sampled device  bake                       N
+        entry(BuoyancyMethod::TexelCentre,   "texel-centre",   true,   true,   BakeMethod::TexelCentre,   512,
+              prepareTexelCentre, evaluateSampled),
+        entry(BuoyancyMethod::ExactCoverage, "exact-coverage", true,   true,   BakeMethod::ExactCoverage, 128,
               prepareExactCoverage, evaluateSampled),
-        entry(BuoyancyMethod::ExactMesh, "exact-mesh", false, BakeMethod::ExactCoverage, 0, prepareExactMesh,
-              evaluateExactMesh),
+        entry(BuoyancyMethod::ExactMesh,     "exact-mesh",     false,  false,  BakeMethod::ExactCoverage, 0,
+              prepareExactMesh, evaluateExactMesh),
     };
     return methods;
 }

@@ -66,8 +66,11 @@ struct IntegrationMethod {
     BuoyancyMethod method = BuoyancyMethod::ExactMesh; ///< the enumerator it stands for (never Auto)
     const char* name = "";           ///< name in scene files, on the command line, in JSON and CSV (buoyancyMethodName)
     /// True when the method integrates over baked surface samples: it needs a texture size and a UV layout, its drag
-    /// runs over the same samples, a deformable body can re-bake them, and a device backend can batch it.
+    /// runs over the same samples, and a deformable body can re-bake them.
     bool sampled = false;
+    /// True when the device backends compute the method's evaluation (sampledHydrostatics over the samples in use,
+    /// kernels/samples.cl): a body of such a method may be batched on a device, others stay on the CPU.
+    bool deviceBatched = false;
     BakeMethod bake = BakeMethod::ExactCoverage; ///< sampled methods: how texels become samples (design.md 1.1)
     int defaultTextureSize = 0;      ///< sampled methods: N when the settings give none; 0 for the others
     /// Prepare a shape once: bake what the evaluation reads and the dry mass properties.
