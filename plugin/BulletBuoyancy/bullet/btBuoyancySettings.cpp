@@ -84,15 +84,16 @@ btBuoyancyMethod btBuoyancyResolveMethod(const btBuoyancySettings& settings, std
 
 int btBuoyancyResolveTextureSize(const btBuoyancySettings& settings, btBuoyancyMethod resolved) {
     if (settings.textureSize > 0) return settings.textureSize;
-    const buoyancy::IntegrationMethod& method = buoyancy::integrationMethod(resolved);
-    if (budgetApplies(settings) && method.sampled) {
+    const buoyancy::IntegrationMethod* method = buoyancy::findIntegrationMethod(resolved);
+    const bool sampled = !method || method->sampled;  // an unresolved value: as for a sampled method
+    if (budgetApplies(settings) && sampled) {
         // The budget's pick for that method (the triangle count does not change a texture method's N).
         const btBuoyancyMethod m = settings.method == btBuoyancyMethod::Auto ? resolved : settings.method;
         return buoyancy::pickLevelOfDetail(settings.errorBudget, m, 0).picked.textureSize;
     }
-    if (!method.sampled) return 0;
+    if (!sampled) return 0;
     if (settings.method == btBuoyancyMethod::Auto) return buoyancy::kDefaultLargeMeshTexture;
-    return method.defaultTextureSize;
+    return method ? method->defaultTextureSize : 0;
 }
 
 btBuoyancyLevelOfDetail btBuoyancyPickLevelOfDetail(const btBuoyancySettings& settings, std::size_t triangleCount) {
