@@ -9,6 +9,7 @@
 #include "scene/SceneFile.h"
 #include "scene/SceneWater.h"
 #include <BulletBuoyancy/integrals/BuoyancyMethod.h>
+#include <BulletBuoyancy/integrals/IntegrationMethod.h>
 #include <BulletBuoyancy/integrals/Hydrostatics.h>
 #include <BulletBuoyancy/integrals/MassProperties.h>
 #include <BulletBuoyancy/mesh/MeshImport.h>
@@ -212,7 +213,7 @@ int runHydrostatics(const HydrostaticsOptions& o) {
         shape = btBuoyancyShape::create(std::move(mesh), settings);
     } catch (const std::exception& e) {  // e.g. charts that cannot fit a tiny --texture, a texture too coarse
         const btBuoyancyMethod wanted = btBuoyancyResolveMethod(settings, triangles);
-        if (wanted == btBuoyancyMethod::ExactMesh) throw UsageError(o.mesh + ": " + e.what());
+        if (!integrationMethod(wanted).sampled) throw UsageError(o.mesh + ": " + e.what());
         // A mesh that passed prepareMesh encloses a positive volume: a texture method that fails on it had too
         // few texels (found by fuzzing).
         throw UsageError(o.mesh + ": texture " + std::to_string(btBuoyancyResolveTextureSize(settings, wanted)) +
@@ -220,8 +221,9 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     }
     const btBuoyancyMethod method = shape->getMethod();
     const int texture = shape->getTextureSize();
-    if (method == btBuoyancyMethod::ExactMesh && o.texture)
-        warnings.push_back({"--texture is ignored by the exact-mesh method"});
+    const IntegrationMethod& integration = shape->getIntegrationMethod();
+    if (!integration.sampled && o.texture)
+        warnings.push_back({std::string("--texture is ignored by the ") + integration.name + " method"});
     if (shape->usesGeneratedUvs() && meshHadUvs) {
         std::string why;
         for (const auto& r : shape->getUvProblems()) why += (why.empty() ? "" : "; ") + r;
@@ -238,13 +240,13 @@ int runHydrostatics(const HydrostaticsOptions& o) {
     // "generated" when the samples came through our atlas; exact-mesh uses no texture: it reports the model's.
     const std::string uvSource = shape->usesGeneratedUvs() || !meshHadUvs ? "generated" : "model";
     const std::size_t sampleCount = shape->getSamples().size();
-    if (method == btBuoyancyMethod::ExactMesh) {
-        wet = treeHydrostatics(shape->getMomentTree(), shape->getMesh(), pose, *water.surface, water.time,
-                               water.density, o.gravity, pose * dry.centre);  // as the action computes it (design.md 2.5)
-    } else {
+    {
+        // As the action computes it (design.md 2.5, 8.2): the method's own evaluation, exact heights, no cache.
+        const Eigen::Vector3d reference = pose * dry.centre;
         SampleWorkspace ws;
-        wet = sampledHydrostatics(shape->getSamples(), pose, *water.surface, water.time, water.density, o.gravity,
-                                  pose * dry.centre, ws);
+        wet = integration.evaluate(shape->getGeometry(shape->getSamples()), pose,
+                                   {*water.surface, water.time, water.density, o.gravity, reference, nullptr, &ws,
+                                    nullptr});
     }
     if (!std::isfinite(dry.volume) || !allFinite(dry.centre) || !dry.inertia.allFinite() ||
         !std::isfinite(wet.submerged_volume) || !allFinite(wet.force) || !allFinite(wet.torque))

@@ -51,7 +51,7 @@ std::vector<NamedMesh> realModels() {
 }
 
 void checkDefaultGoals(const NamedMesh& m) {
-    const auto r = measureAccuracy(m.mesh, BuoyancyMethod::Default, 0);
+    const auto r = measureAccuracy(m.mesh, BuoyancyMethod::Auto, 0);
     INFO(m.name << ": " << describe(r));
     WARN(m.name << " default: " << describe(r));
     buoyancy_test::recordAccuracyRow(m.name, m.mesh.triangleCount(), "default", r);
@@ -90,7 +90,7 @@ TEST_CASE("accuracy: default settings on high-poly meshes (exact-coverage 512) m
                                            {"torus 512x160", makeTorusMesh(1.0, 0.3, 512, 160)}};
     for (const auto& m : meshes) {
         REQUIRE(m.mesh.triangleCount() > kDefaultExactMeshMaxTriangles);
-        auto r = measureAccuracy(m.mesh, BuoyancyMethod::Default, 0);
+        auto r = measureAccuracy(m.mesh, BuoyancyMethod::Auto, 0);
         REQUIRE(r.method == "exact-coverage");
         checkDefaultGoals(m);
         // The same meshes with their own UVs removed: the generated atlas must do as well.

@@ -19,10 +19,9 @@ AccuracyReport measureAccuracy(const TriangleMesh& mesh, BuoyancyMethod requeste
     AccuracyReport rep;
     // Through btBuoyancyShape: the same pipeline (method choice, UVs, bake, mass properties) a body gets.
     btBuoyancySettings settings;
-    settings.method = btBuoyancyMethodFromName(buoyancyMethodName(requested));
+    settings.method = requested;  // btBuoyancyMethod is buoyancy::BuoyancyMethod
     settings.textureSize = texture;
     const auto shape = btBuoyancyShape::create(mesh, settings);
-    const bool sampled = shape->getMethod() != btBuoyancyMethod::ExactMesh;
     rep.method = btBuoyancyMethodName(shape->getMethod());
     rep.texture = shape->getTextureSize();
     rep.samples = shape->getSamples().size();
@@ -56,11 +55,10 @@ AccuracyReport measureAccuracy(const TriangleMesh& mesh, BuoyancyMethod requeste
             const double h = ymin + (ymax - ymin) * (k + 0.5 + 0.0137) / depthCount;
             const OracleMoments sub = oracleSubmergedMoments(posed, mesh.triangles, h);
             const btFlatWaterSurface water(h);
-            const HydrostaticsResult r =
-                sampled
-                    ? sampledHydrostatics(samples, pose, water, 0.0, 1000.0, 9.81, pose * dry.centre, ws)
-                    : treeHydrostatics(shape->getMomentTree(), shape->getMesh(), pose, water, 0.0, 1000.0, 9.81,
-                                       pose * dry.centre);  // what the library computes (moment tree)
+            const Eigen::Vector3d reference = pose * dry.centre;
+            // What the library computes: the method's own evaluation (IntegrationMethod.h).
+            const HydrostaticsResult r = shape->getIntegrationMethod().evaluate(
+                shape->getGeometry(samples), pose, {water, 0.0, 1000.0, 9.81, reference, nullptr, &ws, nullptr});
             rep.sub_volume_pct =
                 std::max(rep.sub_volume_pct, 100 * std::fabs(r.submerged_volume - sub.volume) / exact.volume);
             if (sub.volume > 0.01 * exact.volume)

@@ -771,9 +771,8 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         // The exact-mesh method counts its vertices, not its edge midpoints too: measured in the wave benchmark (the
         // 16-sided cylinder, 34 vertices and 96 edges, swell), exact heights took 13 µs and the patch 22 µs (its
         // third-derivative estimate splits more) at the same error.
-        const std::size_t hydroPoints = m_shape->getMethod() == btBuoyancyMethod::ExactMesh
-                                            ? m_shape->getMesh().vertices.size()
-                                            : getSamplesInUse().size();
+        const std::size_t hydroPoints = m_shape->getIntegrationMethod().sampled ? getSamplesInUse().size()
+                                                                                : m_shape->getMesh().vertices.size();
         const std::size_t dragPoints = dragOn ? m_drag->size() : 0;
         if (nodes * nodes < std::max(hydroPoints, dragPoints)) {
             try {
@@ -791,7 +790,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     const buoyancy::WaterPatch* built = patch ? patch : dragPatch;
     if (!predicted) m_lastWaterSlope = flat ? 0.0 : built ? built->slopeBound() : 1.0;
 
-    const btBuoyancyMethod method = m_shape->getMethod();
+    const buoyancy::IntegrationMethod& method = m_shape->getIntegrationMethod();
     bool onDevice = false;  // h came from the world's device backend
     if (m_settings.buoyancyEnabled && !predicted) {
         try {  // never let an exception escape into Bullet's stepSimulation
@@ -812,16 +811,13 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
                                                   rho, g, com);
             } else if (flat && bc.y() + br <= flatH && !m_deformable) {
                 h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (design.md 2.5)
-            } else if (method == btBuoyancyMethod::ExactMesh) {
-                h = buoyancy::treeHydrostatics(m_shape->getMomentTree(), m_shape->getMesh(), pose, *water, time, rho, g,
-                                               com, patch);
             } else {
-                btBuoyancyDeviceBackend* dev = m_world->getDeviceBackend();  // batched on a device
+                btBuoyancyDeviceBackend* dev = method.deviceBatched ? m_world->getDeviceBackend() : nullptr;
                 if (dev && dev->hydrostatics(*this, pose, com, h))
                     onDevice = true;
                 else
-                    h = buoyancy::sampledHydrostatics(getSamplesInUse(), pose, *water, time, rho, g, com, m_ws,
-                                                      &m_waterCache, patch);
+                    h = method.evaluate(m_shape->getGeometry(getSamplesInUse()), pose,
+                                        {*water, time, rho, g, com, patch, &m_ws, &m_waterCache});
             }
         } catch (const std::exception&) {
             ++m_rejected;

@@ -10,17 +10,15 @@
 
 std::shared_ptr<btBuoyancyDeformable> btBuoyancyDeformable::create(const btBuoyancyShape& shape,
                                                                    const btBuoyancySettings& settings) {
-    const btBuoyancyMethod method = shape.getMethod();
-    if (method != btBuoyancyMethod::ExactCoverage && method != btBuoyancyMethod::TexelCentre)
-        throw std::invalid_argument(std::string("deformable: the shape uses method '") + btBuoyancyMethodName(method) +
+    const buoyancy::IntegrationMethod& method = shape.getIntegrationMethod();
+    if (!method.sampled)
+        throw std::invalid_argument(std::string("deformable: the shape uses method '") + method.name +
                                     "'; deformable bodies need a sampled method (exact-coverage or texel-centre)");
     const int n = shape.getTextureSize();
     const buoyancy::TriangleMesh& mesh = shape.getMesh();
     const buoyancy::UvLayout layout = buoyancy::chooseUvLayout(mesh, n, settings.preferModelUvs);
     std::shared_ptr<btBuoyancyDeformable> d(new btBuoyancyDeformable());
-    d->m_map = buoyancy::buildRebakeMap(mesh, layout.corner_uvs, n,
-                                        method == btBuoyancyMethod::TexelCentre ? buoyancy::BakeMethod::TexelCentre
-                                                                                : buoyancy::BakeMethod::ExactCoverage);
+    d->m_map = buoyancy::buildRebakeMap(mesh, layout.corner_uvs, n, method.bake);
     if (d->m_map.size() != shape.getSamples().size() || d->m_map.texel != shape.getSamples().texel)
         throw std::invalid_argument("deformable: the UV layout rebuilt from settings gives " +
                                     std::to_string(d->m_map.size()) + " samples, the shape has " +

@@ -1,6 +1,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 
 #include <BulletBuoyancy/integrals/BuoyancyMethod.h>
+#include <BulletBuoyancy/integrals/IntegrationMethod.h>
 #include <BulletBuoyancy/integrals/LevelOfDetail.h>
 
 #include <algorithm>
@@ -10,26 +11,6 @@
 
 namespace {
 
-buoyancy::BuoyancyMethod toCore(btBuoyancyMethod m) {
-    switch (m) {
-        case btBuoyancyMethod::TexelCentre: return buoyancy::BuoyancyMethod::TexelCentre;
-        case btBuoyancyMethod::ExactCoverage: return buoyancy::BuoyancyMethod::ExactCoverage;
-        case btBuoyancyMethod::ExactMesh: return buoyancy::BuoyancyMethod::ExactMesh;
-        case btBuoyancyMethod::Auto: break;
-    }
-    return buoyancy::BuoyancyMethod::Default;
-}
-
-btBuoyancyMethod fromCore(buoyancy::BuoyancyMethod m) {
-    switch (m) {
-        case buoyancy::BuoyancyMethod::TexelCentre: return btBuoyancyMethod::TexelCentre;
-        case buoyancy::BuoyancyMethod::ExactCoverage: return btBuoyancyMethod::ExactCoverage;
-        case buoyancy::BuoyancyMethod::ExactMesh: return btBuoyancyMethod::ExactMesh;
-        case buoyancy::BuoyancyMethod::Default: break;
-    }
-    return btBuoyancyMethod::Auto;
-}
-
 void requireNonNegative(double value, const char* field) {
     if (!std::isfinite(value) || value < 0.0)
         throw std::invalid_argument(std::string(field) + ": must be a finite number >= 0 (got " +
@@ -38,18 +19,17 @@ void requireNonNegative(double value, const char* field) {
 
 }  // namespace
 
-const char* btBuoyancyMethodName(btBuoyancyMethod method) { return buoyancy::buoyancyMethodName(toCore(method)); }
+const char* btBuoyancyMethodName(btBuoyancyMethod method) { return buoyancy::buoyancyMethodName(method); }
 
 btBuoyancyMethod btBuoyancyMethodFromName(const std::string& name) {
     if (name == "auto") return btBuoyancyMethod::Auto;
-    if (const auto m = buoyancy::parseBuoyancyMethod(name)) return fromCore(*m);
+    if (const auto m = buoyancy::parseBuoyancyMethod(name)) return *m;
     throw std::invalid_argument("method: unknown value \"" + name +
                                 "\" (expected default, texel-centre, exact-coverage or exact-mesh)");
 }
 
 void btBuoyancySettings::validate() const {
-    if (method != btBuoyancyMethod::Auto && method != btBuoyancyMethod::TexelCentre &&
-        method != btBuoyancyMethod::ExactCoverage && method != btBuoyancyMethod::ExactMesh)
+    if (method != btBuoyancyMethod::Auto && !buoyancy::findIntegrationMethod(method))
         throw std::invalid_argument("method: not a btBuoyancyMethod value");
     if (textureSize < 0 || textureSize > 16384)
         throw std::invalid_argument("textureSize: must be 0 (default) or in 1..16384 (got " +
@@ -91,41 +71,45 @@ void btBuoyancySettings::validate() const {
 
 namespace {
 bool budgetApplies(const btBuoyancySettings& s) {
-    return s.errorBudget > 0 && s.method != btBuoyancyMethod::ExactMesh;
+    // Auto picks among methods and sizes, a sampled method only its texture size.
+    const buoyancy::IntegrationMethod* method = buoyancy::findIntegrationMethod(s.method);
+    return s.errorBudget > 0 && (!method || method->sampled);
 }
 }  // namespace
 
 btBuoyancyMethod btBuoyancyResolveMethod(const btBuoyancySettings& settings, std::size_t triangleCount) {
     if (budgetApplies(settings))
-        return fromCore(buoyancy::pickLevelOfDetail(settings.errorBudget, toCore(settings.method), triangleCount).picked.method);
-    return fromCore(buoyancy::resolveMethod(toCore(settings.method), triangleCount));
+        return buoyancy::pickLevelOfDetail(settings.errorBudget, settings.method, triangleCount).picked.method;
+    return buoyancy::resolveMethod(settings.method, triangleCount);
 }
 
 int btBuoyancyResolveTextureSize(const btBuoyancySettings& settings, btBuoyancyMethod resolved) {
     if (settings.textureSize > 0) return settings.textureSize;
-    if (budgetApplies(settings) && resolved != btBuoyancyMethod::ExactMesh) {
+    const buoyancy::IntegrationMethod* method = buoyancy::findIntegrationMethod(resolved);
+    const bool sampled = !method || method->sampled;  // an unresolved value: as for a sampled method
+    if (budgetApplies(settings) && sampled) {
         // The budget's pick for that method (the triangle count does not change a texture method's N).
         const btBuoyancyMethod m = settings.method == btBuoyancyMethod::Auto ? resolved : settings.method;
-        return buoyancy::pickLevelOfDetail(settings.errorBudget, toCore(m), 0).picked.textureSize;
+        return buoyancy::pickLevelOfDetail(settings.errorBudget, m, 0).picked.textureSize;
     }
-    if (resolved == btBuoyancyMethod::ExactMesh) return 0;
+    if (!sampled) return 0;
     if (settings.method == btBuoyancyMethod::Auto) return buoyancy::kDefaultLargeMeshTexture;
-    return buoyancy::defaultTextureSize(toCore(resolved));
+    return method ? method->defaultTextureSize : 0;
 }
 
 btBuoyancyLevelOfDetail btBuoyancyPickLevelOfDetail(const btBuoyancySettings& settings, std::size_t triangleCount) {
     settings.validate();
     btBuoyancyLevelOfDetail out;
     out.method = btBuoyancyResolveMethod(settings, triangleCount);
-    out.textureSize = out.method == btBuoyancyMethod::ExactMesh ? 0 : btBuoyancyResolveTextureSize(settings, out.method);
+    out.textureSize = buoyancy::integrationMethod(out.method).sampled ? btBuoyancyResolveTextureSize(settings, out.method) : 0;
     out.budgetPct = settings.errorBudget;
     // The model's error for what is used (an explicit textureSize may differ from the budget's pick).
-    for (const buoyancy::LodCandidate& c : buoyancy::lodCandidates(toCore(out.method), triangleCount))
+    for (const buoyancy::LodCandidate& c : buoyancy::lodCandidates(out.method, triangleCount))
         if (c.textureSize == out.textureSize) out.modelVolumeErrorPct = c.volumeErrorPct;
     const std::string what = std::string(btBuoyancyMethodName(out.method)) +
                              (out.textureSize ? " " + std::to_string(out.textureSize) : std::string());
     if (budgetApplies(settings)) {
-        const buoyancy::LodChoice c = buoyancy::pickLevelOfDetail(settings.errorBudget, toCore(settings.method), triangleCount);
+        const buoyancy::LodChoice c = buoyancy::pickLevelOfDetail(settings.errorBudget, settings.method, triangleCount);
         out.withinBudget = c.withinBudget && out.modelVolumeErrorPct <= settings.errorBudget;
         out.description = (settings.textureSize > 0 ? what + " (textureSize given; budget's pick: " + c.description + ")"
                                                     : c.description);

@@ -4,16 +4,19 @@
 /// *Settings style): public members with documented defaults, validated once when a shape or an action
 /// is built.
 
+#include <BulletBuoyancy/integrals/BuoyancyMethod.h>
+
 #include <cstddef>
 #include <string>
 
-/// How the buoyancy integrals are evaluated (design.md 1.1, 2.4).
-enum class btBuoyancyMethod {
-    Auto,          ///< the library default: ExactMesh for small meshes, else ExactCoverage (btBuoyancyResolveMethod)
-    TexelCentre,   ///< the paper's texel-centre baking (erratic convergence, Σ A ≠ 0; for comparison)
-    ExactCoverage, ///< surface samples baked by exact texel coverage (Σ A = 0, O(h²) waterline error)
-    ExactMesh,     ///< every triangle clipped against the water each substep (exact in flat water)
-};
+/// How the buoyancy integrals are evaluated (design.md 1.1, 2.4, 8.2): the Bullet-style name of the library's one
+/// method enumeration, buoyancy::BuoyancyMethod (integrals/BuoyancyMethod.h):
+///   Auto           the library default: ExactMesh for small meshes, else ExactCoverage (btBuoyancyResolveMethod);
+///   TexelCentre    the paper's texel-centre baking (erratic convergence, Σ A ≠ 0; for comparison);
+///   ExactCoverage  surface samples baked by exact texel coverage (Σ A = 0, O(h²) waterline error);
+///   ExactMesh      every triangle clipped against the water each substep (exact in flat water).
+/// What each method prepares and evaluates: buoyancy::integrationMethod (integrals/IntegrationMethod.h).
+using btBuoyancyMethod = buoyancy::BuoyancyMethod;
 
 /// Name used in scene files and on the command line: "default", "texel-centre", "exact-coverage", "exact-mesh"
 /// (buoyancy::buoyancyMethodName; Auto is "default").
@@ -44,7 +47,7 @@ struct btBuoyancySettings {
     ///@name Integration method and level of detail
     btBuoyancyMethod method = btBuoyancyMethod::Auto; ///< see btBuoyancyMethod
     /// N of the N×N sample texture (sampled methods), 1..16384, typical 64–512; 0 = the library default for
-    /// the resolved method (buoyancy::defaultTextureSize; 512 when Auto picks exact-coverage).
+    /// the resolved method (buoyancy::IntegrationMethod::defaultTextureSize; 512 when Auto picks exact-coverage).
     int textureSize = 0;
     bool preferModelUvs = true;         ///< sampled methods: use the model's UVs when they are a valid layout
     /// Automatic level of detail: the worst submerged-volume error allowed, % of the body's volume

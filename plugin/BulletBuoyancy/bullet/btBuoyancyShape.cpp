@@ -8,9 +8,6 @@
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
-#include <BulletBuoyancy/atlas/UvLayout.h>
-#include <BulletBuoyancy/bake/BakeSamples.h>
-
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -19,50 +16,6 @@
 #include <string>
 
 namespace {
-
-/// Drag/shell samples for the ExactMesh method: each triangle split into n×n congruent sub-triangles
-/// (n from its longest edge / targetEdge, 1..64), one sample per sub-triangle at its centroid with area
-/// vector A_tri / n². A box's 12 triangles alone would leave whole rotation axes undamped.
-buoyancy::SurfaceSamples faceSamples(const buoyancy::TriangleMesh& mesh, double targetEdge) {
-    auto splits = [&](std::size_t t) {
-        const Eigen::Vector3d& a = mesh.corner(t, 0);
-        const Eigen::Vector3d& b = mesh.corner(t, 1);
-        const Eigen::Vector3d& c = mesh.corner(t, 2);
-        const double e = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-        return static_cast<int>(std::clamp(std::ceil(e / targetEdge), 1.0, 64.0));
-    };
-    // Keep the count moderate: at most ≈ 16384 samples beyond one per triangle.
-    for (int pass = 0; pass < 20; ++pass) {
-        std::size_t total = 0;
-        for (std::size_t t = 0; t < mesh.triangleCount(); ++t) total += std::size_t(splits(t)) * splits(t);
-        if (total <= std::max<std::size_t>(16384, mesh.triangleCount())) break;
-        targetEdge *= 1.5;
-    }
-    buoyancy::SurfaceSamples s;
-    s.texture_size = 0;
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-        const Eigen::Vector3d& a = mesh.corner(t, 0);
-        const Eigen::Vector3d& b = mesh.corner(t, 1);
-        const Eigen::Vector3d& c = mesh.corner(t, 2);
-        const int n = splits(t);
-        const Eigen::Vector3d A = 0.5 * (b - a).cross(c - a) / double(n * n);
-        const double area = A.norm();
-        const Eigen::Vector3d du = (b - a) / double(n), dv = (c - a) / double(n);
-        for (int i = 0; i < n; ++i) {
-            for (int j = 0; i + j < n; ++j) {
-                // Upward sub-triangle (i,j),(i+1,j),(i,j+1): centroid at (i+1/3, j+1/3).
-                Eigen::Vector3d p = a + (i + 1.0 / 3.0) * du + (j + 1.0 / 3.0) * dv;
-                s.push(p.x(), p.y(), p.z(), A.x(), A.y(), A.z(), area, 0u, static_cast<std::uint32_t>(t));
-                if (i + j < n - 1) {
-                    // Downward sub-triangle (i+1,j),(i,j+1),(i+1,j+1): centroid at (i+2/3, j+2/3).
-                    p = a + (i + 2.0 / 3.0) * du + (j + 2.0 / 3.0) * dv;
-                    s.push(p.x(), p.y(), p.z(), A.x(), A.y(), A.z(), area, 0u, static_cast<std::uint32_t>(t));
-                }
-            }
-        }
-    }
-    return s;
-}
 
 bool finite(const buoyancy::MassProperties& m) {
     return std::isfinite(m.mass) && std::isfinite(m.volume) && m.centre.allFinite() && m.inertia.allFinite();
@@ -119,7 +72,7 @@ std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::create(buoyancy::Triangl
     }
     std::shared_ptr<btBuoyancyShape> shape(new btBuoyancyShape());
     shape->m_meshWarnings = std::move(report.warnings);
-    shape->m_method = btBuoyancyResolveMethod(settings, mesh.triangleCount());
+    shape->m_integration = &buoyancy::integrationMethod(btBuoyancyResolveMethod(settings, mesh.triangleCount()));
     shape->m_mesh = std::move(mesh);
     const buoyancy::TriangleMesh& m = shape->m_mesh;
 
@@ -132,28 +85,13 @@ std::shared_ptr<const btBuoyancyShape> btBuoyancyShape::create(buoyancy::Triangl
     for (const Eigen::Vector3d& v : m.vertices)
         shape->m_boundsRadius = std::max(shape->m_boundsRadius, (v - shape->m_boundsCentre).norm());
 
-    shape->m_faceSamples = faceSamples(m, std::max(2.0 * shape->m_boundsRadius / 16.0, 1e-9));
-    if (shape->m_method == btBuoyancyMethod::ExactMesh) {
-        shape->m_unitSolid = buoyancy::polyhedronMassProperties(m, 1.0);
-        shape->m_tree = buoyancy::buildMeshMomentTree(m);  // closed-form wet nodes (design.md 2.5)
-        // Shell from point masses on the sub-triangles (their own small inertia neglected).
-        shape->m_unitShell = buoyancy::shellMassProperties(shape->m_faceSamples, 1.0, 1.0);
-    } else {
-        const buoyancy::BakeMethod bake = shape->m_method == btBuoyancyMethod::TexelCentre
-                                              ? buoyancy::BakeMethod::TexelCentre
-                                              : buoyancy::BakeMethod::ExactCoverage;
-        const int n = btBuoyancyResolveTextureSize(settings, shape->m_method);
-        const buoyancy::UvLayout layout = buoyancy::chooseUvLayout(m, n, settings.preferModelUvs);
-        shape->m_uvGenerated = layout.generated;
-        shape->m_uvProblems = layout.reasons;
-        shape->m_samples = buoyancy::bakeSurfaceSamples(m, layout.corner_uvs, n, bake);
-        if (shape->m_samples.size() == 0) throw std::invalid_argument("mesh: baking produced no samples");
-        // Mass properties from the same samples as the buoyancy (design.md 2.1), so ρ_body = ρ_w is neutral.
-        shape->m_unitSolid = buoyancy::solidMassProperties(shape->m_samples, 1.0);
-        shape->m_unitShell = buoyancy::shellMassProperties(shape->m_samples, 1.0, 1.0);
-    }
-    if (!finite(shape->m_unitSolid) || !(shape->m_unitSolid.volume > 0.0))
-        throw std::invalid_argument("mesh: encloses no positive volume (" + std::to_string(shape->m_unitSolid.volume) +
+    buoyancy::PrepareOptions options;
+    options.textureSize = shape->m_integration->sampled ? btBuoyancyResolveTextureSize(settings, shape->getMethod()) : 0;
+    options.preferModelUvs = settings.preferModelUvs;
+    options.boundsRadius = shape->m_boundsRadius;
+    shape->m_integration->prepare(m, options, shape->m_prepared);
+    if (!finite(shape->m_prepared.unitSolid) || !(shape->m_prepared.unitSolid.volume > 0.0))
+        throw std::invalid_argument("mesh: encloses no positive volume (" + std::to_string(shape->m_prepared.unitSolid.volume) +
                                     " m^3); is it closed and outward?");
     return shape;
 }

@@ -6,6 +6,7 @@
 
 #include <BulletBuoyancy/bake/SurfaceSamples.h>
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
+#include <BulletBuoyancy/integrals/IntegrationMethod.h>
 #include <BulletBuoyancy/integrals/MassProperties.h>
 #include <BulletBuoyancy/integrals/MeshMomentTree.h>
 #include <BulletBuoyancy/mesh/TriangleMesh.h>
@@ -20,9 +21,10 @@ class btCollisionShape;
 /// Shared per-mesh buoyancy data (immutable once created).
 class btBuoyancyShape {
 public:
-    /// Build the shape: resolve the method (btBuoyancyResolveMethod), choose the UV layout
-    /// (chooseUvLayout) and bake samples for sampled methods, compute unit-density mass properties from
-    /// the same data the buoyancy integrals use (so a body of the fluid's density is exactly neutral).
+    /// Build the shape: resolve the method (btBuoyancyResolveMethod) and let it prepare the mesh once
+    /// (buoyancy::IntegrationMethod::prepare: the UV layout and baked samples of a sampled method, the moment tree
+    /// and face samples of exact-mesh), with unit-density mass properties from the same data the buoyancy integrals
+    /// use (so a body of the fluid's density is exactly neutral).
     /// The mesh goes through the checks of the command line first (prepareMesh: finite, closed, consistently
     /// oriented, enclosing a positive volume; duplicate vertices welded, degenerate triangles dropped, an inside-out
     /// component turned outward, each with a warning in getMeshWarnings()), so no shape can be built from an open
@@ -41,23 +43,31 @@ public:
                                                                      const btBuoyancySettings& settings = btBuoyancySettings());
 
     /// The concrete method (never Auto).
-    btBuoyancyMethod getMethod() const { return m_method; }
+    btBuoyancyMethod getMethod() const { return m_integration->method; }
+    /// The method's registry entry: what it prepared and how a pose is evaluated (integrals/IntegrationMethod.h).
+    const buoyancy::IntegrationMethod& getIntegrationMethod() const { return *m_integration; }
+    /// The shape data the method's evaluation reads, with `samples` as the samples in use (getSamples(), or a
+    /// deformable body's re-baked ones).
+    buoyancy::MethodGeometry getGeometry(const buoyancy::SurfaceSamples& samples) const {
+        return {m_mesh, m_prepared.tree, samples};
+    }
     /// The mesh, body (mesh) frame, m.
     const buoyancy::TriangleMesh& getMesh() const { return m_mesh; }
     /// Moment tree of the mesh for the exact-mesh method (design.md 2.5; empty for sampled methods).
-    const buoyancy::MeshMomentTree& getMomentTree() const { return m_tree; }
+    const buoyancy::MeshMomentTree& getMomentTree() const { return m_prepared.tree; }
     /// Hydrostatic samples (empty for ExactMesh).
-    const buoyancy::SurfaceSamples& getSamples() const { return m_samples; }
-    /// Samples used for drag: the hydrostatic samples, or one per triangle (centroid, area vector) for ExactMesh.
+    const buoyancy::SurfaceSamples& getSamples() const { return m_prepared.samples; }
+    /// Samples used for drag: the hydrostatic samples of a sampled method, else triangle pieces (centroid, area
+    /// vector; ExactMesh).
     const buoyancy::SurfaceSamples& getDragSamples() const {
-        return m_method == btBuoyancyMethod::ExactMesh ? m_faceSamples : m_samples;
+        return m_integration->sampled ? m_prepared.samples : m_prepared.faceSamples;
     }
     /// Solid mass properties at density 1 kg/m³ (mass = volume), mesh frame.
-    const buoyancy::MassProperties& getUnitSolid() const { return m_unitSolid; }
+    const buoyancy::MassProperties& getUnitSolid() const { return m_prepared.unitSolid; }
     /// Shell mass properties at density 1 kg/m³ and thickness 1 m (mass = area), mesh frame.
-    const buoyancy::MassProperties& getUnitShell() const { return m_unitShell; }
+    const buoyancy::MassProperties& getUnitShell() const { return m_prepared.unitShell; }
     /// Enclosed volume as the buoyancy integrals see it, m³.
-    double getVolume() const { return m_unitSolid.volume; }
+    double getVolume() const { return m_prepared.unitSolid.volume; }
     /// Centre of the mesh's bounding box, mesh frame, m.
     const Eigen::Vector3d& getBoundsCentre() const { return m_boundsCentre; }
     /// Radius of the bounding sphere about getBoundsCentre(), m.
@@ -82,24 +92,20 @@ public:
     int getCapsuleAxis() const { return m_capsuleAxis; }
     /// True when the samples were baked through an atlas the library generated (the model's UVs were missing or
     /// unusable); false for the model's own UVs and for ExactMesh (no texture).
-    bool usesGeneratedUvs() const { return m_uvGenerated; }
+    bool usesGeneratedUvs() const { return m_prepared.uvGenerated; }
     /// Why the model's UVs were not used (empty unless usesGeneratedUvs()), e.g. "overlapping UVs (120 triangles)".
-    const std::vector<std::string>& getUvProblems() const { return m_uvProblems; }
+    const std::vector<std::string>& getUvProblems() const { return m_prepared.uvProblems; }
     /// What the mesh checks changed or noticed (flipped components, intersecting parts); empty for a clean mesh.
     const std::vector<buoyancy::MeshWarning>& getMeshWarnings() const { return m_meshWarnings; }
     /// Texture size the samples were baked at (0 for ExactMesh).
-    int getTextureSize() const { return m_samples.texture_size; }
+    int getTextureSize() const { return m_prepared.samples.texture_size; }
 
 private:
     btBuoyancyShape() = default;
 
-    btBuoyancyMethod m_method = btBuoyancyMethod::ExactMesh;
+    const buoyancy::IntegrationMethod* m_integration = nullptr;  ///< set by create()
     buoyancy::TriangleMesh m_mesh;
-    buoyancy::SurfaceSamples m_samples;
-    buoyancy::MeshMomentTree m_tree;
-    buoyancy::SurfaceSamples m_faceSamples;
-    buoyancy::MassProperties m_unitSolid;
-    buoyancy::MassProperties m_unitShell;
+    buoyancy::PreparedShape m_prepared;
     Eigen::Vector3d m_boundsCentre = Eigen::Vector3d::Zero();
     double m_boundsRadius = 0;
     double m_sphereRadius = 0;
@@ -107,7 +113,5 @@ private:
     double m_capsuleRadius = 0;
     double m_capsuleHalfHeight = 0;
     int m_capsuleAxis = 1;
-    bool m_uvGenerated = false;
-    std::vector<std::string> m_uvProblems;
     std::vector<buoyancy::MeshWarning> m_meshWarnings;
 };

@@ -36,12 +36,12 @@ constexpr double kSamplesPerTexel = 0.7;
 
 std::vector<LodCandidate> lodCandidates(BuoyancyMethod requested, std::size_t triangleCount) {
     std::vector<LodCandidate> c;
-    if (requested == BuoyancyMethod::Default || requested == BuoyancyMethod::ExactMesh)
+    if (requested == BuoyancyMethod::Auto || requested == BuoyancyMethod::ExactMesh)
         c.push_back({BuoyancyMethod::ExactMesh, 0, kExactMeshErrorPct, kNsPerTriangle * double(triangleCount)});
     if (requested == BuoyancyMethod::ExactMesh) return c;
     for (const MeasuredError& m : kMeasured) {
         const double cost = kNsPerSample * kSamplesPerTexel * double(m.n) * double(m.n);
-        if (requested == BuoyancyMethod::Default || requested == BuoyancyMethod::ExactCoverage)
+        if (requested == BuoyancyMethod::Auto || requested == BuoyancyMethod::ExactCoverage)
             c.push_back({BuoyancyMethod::ExactCoverage, m.n, kLodSafetyFactor * m.exactCoverage, cost});
         if (requested == BuoyancyMethod::TexelCentre)
             c.push_back({BuoyancyMethod::TexelCentre, m.n, kLodSafetyFactor * m.texelCentre, cost});

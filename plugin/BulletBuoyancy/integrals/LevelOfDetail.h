@@ -35,7 +35,7 @@ struct LodChoice {
 };
 
 /// The model's candidates for a mesh of `triangleCount` triangles and a method restriction: `requested`
-/// Default allows exact-mesh and exact-coverage 32…1024; ExactCoverage or TexelCentre only that method's
+/// Auto allows exact-mesh and exact-coverage 32…1024; ExactCoverage or TexelCentre only that method's
 /// sizes; ExactMesh only itself. Dominated candidates (another one at most as costly and at most as wrong)
 /// are kept: the pick below takes the cheapest feasible one.
 std::vector<LodCandidate> lodCandidates(BuoyancyMethod requested, std::size_t triangleCount);

@@ -99,7 +99,7 @@ void btOpenClBuoyancyBackend::Impl::computeHydro() {
         if (!b->getBroadphaseHandle() || b->getInvMass() == btScalar(0)) continue;
         if (!b->isActive() && !waves) continue;
         const btBuoyancyShape& shape = *a->getShape();
-        if (shape.getMethod() == btBuoyancyMethod::ExactMesh || !a->getSettings().buoyancyEnabled) continue;
+        if (!shape.getIntegrationMethod().deviceBatched || !a->getSettings().buoyancyEnabled) continue;
         // In the water frame, as btBuoyancyAction::updateAction (the action maps the results back).
         const btWaterFrame& frame = world->getWaterFrame();
         const Eigen::Isometry3d pose = frame.toWater(toEigen(b->getWorldTransform() * a->getMeshInComFrame()));
