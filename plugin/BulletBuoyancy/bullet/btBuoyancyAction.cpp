@@ -520,6 +520,37 @@ void btBuoyancyAction::dragEvaluationVelocity(const buoyancy::HydrostaticsResult
                                      toBullet(frame.toWorldVector(Eigen::Vector3d(h.torque * dt)))));
 }
 
+bool btBuoyancyAction::deviceRecord(const btWaterSurface& water, double time, btBuoyancyDeviceRecord& out) const {
+    // The gating of evaluate: the bodies it would compute with the sampled method.
+    const btRigidBody* b = m_body;
+    if (!b->getBroadphaseHandle() || b->getInvMass() == btScalar(0)) return false;
+    if (!b->isActive() && !water.isTimeVarying()) return false;
+    if (!m_shape->getIntegrationMethod().deviceBatched || !m_settings.buoyancyEnabled) return false;
+    // In the water frame, as evaluate (which maps the results back).
+    const btWaterFrame& frame = m_world->getWaterFrame();
+    out.pose = frame.toWater(toEigen(b->getWorldTransform() * getMeshInComFrame()));
+    out.com = frame.toWaterPoint(toEigen(b->getCenterOfMassPosition()));
+    if (!out.pose.matrix().allFinite() || !out.com.allFinite()) return false;
+    const btBuoyancyDeformable* def = m_deformable.get();
+    const Eigen::Vector3d bc = out.pose * (def ? def->getBoundsCentre() : m_shape->getBoundsCentre());
+    const double br = def ? def->getBoundsRadius() : m_shape->getBoundsRadius();
+    double lo = 0, hi = 0;
+    water.heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
+    if (bc.y() - br >= hi) return false;  // dry
+    double flatH = 0;
+    if (!def && water.isFlat(time, flatH) && bc.y() + br <= flatH) return false;  // the closed form (design.md 2.5)
+    out.samples = &getSamplesInUse();
+    if (out.samples->size() == 0) return false;
+    out.samplesOwner = def ? std::shared_ptr<const void>(m_deformable) : std::shared_ptr<const void>(m_shape);
+    out.deformable = def;
+    out.dragClusters = m_drag.get();
+    out.dragCoefficient = m_settings.dragCoefficient;
+    out.skinFriction = m_settings.skinFriction;
+    out.dragOn = m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 || m_settings.linearDamping > 0 ||
+                 m_settings.radiationDamping > 0;
+    return true;
+}
+
 void btBuoyancyAction::updateAction(btCollisionWorld* collisionWorld, btScalar deltaTimeStep) {
     const double dt = double(deltaTimeStep);
     // A zero, negative or non-finite step applies nothing and leaves the water's clock alone.

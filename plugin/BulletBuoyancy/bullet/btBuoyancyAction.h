@@ -10,6 +10,7 @@
 /// Removing the action from the world is safe at any time. Deleting the body while its action is still in
 /// the world is a misuse (checked in debug builds: the body must be in the world the action runs in).
 
+#include <BulletBuoyancy/bullet/btBuoyancyDeviceBackend.h>
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
@@ -76,7 +77,7 @@ struct btBuoyancyMassResult {
 };
 
 /// Buoyancy of one rigid body in the water of a btBuoyancyWorld.
-class btBuoyancyAction : public btActionInterface {
+class btBuoyancyAction : public btActionInterface, public btBuoyancyDeviceBody {
 public:
     /// Any rigid body whose collision/COM frame holds the mesh at `meshInCom` (identity when the mesh's
     /// origin is the COM and its axes the principal axes).
@@ -209,13 +210,17 @@ public:
     /// Public so a batching backend evaluates every body's drag at exactly the velocity the action would.
     /// @param dt  substep, s   @param[out] v  m/s   @param[out] w  rad/s
     void dragEvaluationVelocity(const buoyancy::HydrostaticsResult& h, double dt, Eigen::Vector3d& v,
-                                Eigen::Vector3d& w) const;
+                                Eigen::Vector3d& w) const override;
     /// The linear damping coefficient b of this substep's drag, m/s (design.md 2.6, "Radiation damping"):
     /// settings.linearDamping plus the radiation damping β g / ω_n faded by the depth of the body's top under the
     /// water (btBuoyancySettings::radiationDamping). Public so a batching backend uses the action's own value.
     /// @param h     this substep's hydrostatics (waterline area and submerged volume), water frame
     /// @param pose  the mesh's pose in the water frame (btBuoyancyWorld::getWaterFrame)
-    double linearDampingNow(const buoyancy::HydrostaticsResult& h, const Eigen::Isometry3d& pose) const;
+    double linearDampingNow(const buoyancy::HydrostaticsResult& h, const Eigen::Isometry3d& pose) const override;
+    /// This substep's record of the body for a batching backend (btBuoyancyDeviceBody::deviceRecord): false unless the
+    /// action would compute it with a sampled method (not exact-mesh, buoyancy on, awake or in changing water, in
+    /// reach of the water and not entirely under flat water, where the closed form is used).
+    bool deviceRecord(const btWaterSurface& water, double time, btBuoyancyDeviceRecord& out) const override;
     ///@}
 
 private:

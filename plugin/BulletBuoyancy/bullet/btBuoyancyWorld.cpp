@@ -246,6 +246,7 @@ std::uint64_t btBuoyancyWorld::registerAction(btBuoyancyAction* action) {
                                "parallel; create and destroy actions between steps");
     m_batchDirty = true;
     m_actions.push_back(action);
+    m_deviceBodies.push_back(action);
     return m_registrations++;
 }
 
@@ -266,6 +267,8 @@ void btBuoyancyWorld::unregisterAction(btBuoyancyAction* action) {
     m_batchDirty = true;
     m_batch.erase(std::remove(m_batch.begin(), m_batch.end(), action), m_batch.end());
     m_actions.erase(std::remove(m_actions.begin(), m_actions.end(), action), m_actions.end());
+    btBuoyancyDeviceBody* const body = action;
+    m_deviceBodies.erase(std::remove(m_deviceBodies.begin(), m_deviceBodies.end(), body), m_deviceBodies.end());
 }
 
 void btBuoyancyWorld::registerFloodingAction(btFloodingAction* action) {

@@ -31,6 +31,7 @@ class btWaterSurface;
 class btBuoyancyAction;
 class btFloodingAction;
 class btBuoyancyDeviceBackend;
+class btBuoyancyDeviceBody;
 class btActionInterface;
 class btCollisionWorld;
 class btDynamicsWorld;
@@ -179,6 +180,8 @@ public:
 
     /// Registered actions (every btBuoyancyAction built with this context, in or out of a world).
     const std::vector<btBuoyancyAction*>& getActions() const { return m_actions; }
+    /// The same bodies as a batching backend sees them (btBuoyancyDeviceBackend), in the same order.
+    const std::vector<btBuoyancyDeviceBody*>& getDeviceBodies() const { return m_deviceBodies; }
 
     /// Called by each action at the start of its updateAction. A new substep has begun when the calling
     /// action was already called in the current one (Bullet calls every action once per substep): the
@@ -313,6 +316,7 @@ private:
     double m_time = 0;
     std::uint64_t m_substep = 0;
     std::vector<btBuoyancyAction*> m_actions;
+    std::vector<btBuoyancyDeviceBody*> m_deviceBodies;  ///< m_actions as btBuoyancyDeviceBody
     std::uint64_t m_registrations = 0;  ///< actions registered so far (never decreases)
     std::unique_ptr<btBuoyancyDeviceBackend> m_device;  ///< batching backend, nullptr = CPU
     /// @name Events (addEventListener)

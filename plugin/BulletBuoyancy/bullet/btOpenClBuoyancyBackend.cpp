@@ -1,12 +1,12 @@
 /// @file btOpenClBuoyancyBackend.cpp
 /// Host side of the OpenCL backend. Per substep, at the first action's request:
-///   1. collect every eligible body of the world (the same gating as btBuoyancyAction::updateAction),
+///   1. collect every eligible body of the world (btBuoyancyDeviceBody::deviceRecord),
 ///   2. upload per-body parameters and the tile list (samples of every mesh live in one device buffer, shared by
 ///      the bodies using that mesh; deformable meshes are re-baked on the device when their vertices changed),
 ///   3. launch bb_hydro_tiles (one work-group per tile of ≤ tileSamples samples) and bb_reduce_bodies, read back
 ///      12 sums per body;
 /// and at the first drag request: the same with bb_drag_tiles on each action's drag clusters, at each body's
-/// btBuoyancyAction::dragEvaluationVelocity. The formulas are geometry/SampleFormulas.h, shared with the CPU.
+/// btBuoyancyDeviceBody::dragEvaluationVelocity. The formulas are geometry/SampleFormulas.h, shared with the CPU.
 /// This file chooses the device, builds the kernels and holds the public calls; the jobs behind them are in
 /// opencl/ (OpenClBackendImpl.h lists them). Compiled only with OpenCL (btOpenClBuoyancyBackendStub.cpp otherwise).
 
@@ -165,7 +165,7 @@ void btOpenClBuoyancyBackend::beginSubstep(double dt) {
     m_impl->dt = dt;
 }
 
-bool btOpenClBuoyancyBackend::hydrostatics(const btBuoyancyAction& action, const Eigen::Isometry3d& pose,
+bool btOpenClBuoyancyBackend::hydrostatics(const btBuoyancyDeviceBody& body, const Eigen::Isometry3d& pose,
                                            const Eigen::Vector3d& com, buoyancy::HydrostaticsResult& out) {
     Impl& d = *m_impl;
     std::lock_guard<std::mutex> lock(d.mutex);  // once per body and substep, not per sample
@@ -183,7 +183,7 @@ bool btOpenClBuoyancyBackend::hydrostatics(const btBuoyancyAction& action, const
             d.fallback = std::string("hydrostatics batch: ") + e.what();
         }
     }
-    const auto it = d.index.find(&action);
+    const auto it = d.index.find(&body);
     if (it == d.index.end() || !d.bodies[it->second].valid || d.bodies[it->second].pose.matrix() != pose.matrix() ||
         d.bodies[it->second].com != com) {
         ++d.stats.declined;
@@ -194,7 +194,7 @@ bool btOpenClBuoyancyBackend::hydrostatics(const btBuoyancyAction& action, const
     return true;
 }
 
-bool btOpenClBuoyancyBackend::drag(const btBuoyancyAction& action, const Eigen::Vector3d& com, const Eigen::Vector3d& v,
+bool btOpenClBuoyancyBackend::drag(const btBuoyancyDeviceBody& body, const Eigen::Vector3d& com, const Eigen::Vector3d& v,
                                    const Eigen::Vector3d& w, Eigen::Vector3d& force, Eigen::Vector3d& torque,
                                    Eigen::Vector3d& meanWaterVelocity, double& linearDampingPower) {
     Impl& d = *m_impl;
@@ -211,7 +211,7 @@ bool btOpenClBuoyancyBackend::drag(const btBuoyancyAction& action, const Eigen::
             d.fallback = std::string("drag batch: ") + e.what();
         }
     }
-    const auto it = d.index.find(&action);
+    const auto it = d.index.find(&body);
     if (it == d.index.end()) return false;
     const Impl::Body& b = d.bodies[it->second];
     if (!b.dragValid || b.com != com || b.v != v || b.w != w) {

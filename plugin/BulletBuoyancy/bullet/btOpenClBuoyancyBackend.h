@@ -53,9 +53,9 @@ public:
     btOpenClBuoyancyBackend& operator=(const btOpenClBuoyancyBackend&) = delete;
 
     void beginSubstep(double dt) override;
-    bool hydrostatics(const btBuoyancyAction& action, const Eigen::Isometry3d& pose, const Eigen::Vector3d& com,
+    bool hydrostatics(const btBuoyancyDeviceBody& body, const Eigen::Isometry3d& pose, const Eigen::Vector3d& com,
                       buoyancy::HydrostaticsResult& out) override;
-    bool drag(const btBuoyancyAction& action, const Eigen::Vector3d& com, const Eigen::Vector3d& v,
+    bool drag(const btBuoyancyDeviceBody& body, const Eigen::Vector3d& com, const Eigen::Vector3d& v,
               const Eigen::Vector3d& w, Eigen::Vector3d& force, Eigen::Vector3d& torque,
               Eigen::Vector3d& meanWaterVelocity, double& linearDampingPower) override;
     std::string describe() const override;

@@ -22,11 +22,11 @@ std::unique_ptr<btOpenClBuoyancyBackend> btOpenClBuoyancyBackend::create(btBuoya
 btOpenClBuoyancyBackend::btOpenClBuoyancyBackend(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
 btOpenClBuoyancyBackend::~btOpenClBuoyancyBackend() = default;
 void btOpenClBuoyancyBackend::beginSubstep(double) {}
-bool btOpenClBuoyancyBackend::hydrostatics(const btBuoyancyAction&, const Eigen::Isometry3d&, const Eigen::Vector3d&,
+bool btOpenClBuoyancyBackend::hydrostatics(const btBuoyancyDeviceBody&, const Eigen::Isometry3d&, const Eigen::Vector3d&,
                                            buoyancy::HydrostaticsResult&) {
     return false;
 }
-bool btOpenClBuoyancyBackend::drag(const btBuoyancyAction&, const Eigen::Vector3d&, const Eigen::Vector3d&,
+bool btOpenClBuoyancyBackend::drag(const btBuoyancyDeviceBody&, const Eigen::Vector3d&, const Eigen::Vector3d&,
                                    const Eigen::Vector3d&, Eigen::Vector3d&, Eigen::Vector3d&, Eigen::Vector3d&,
                                    double&) {
     return false;

@@ -12,7 +12,6 @@
 
 #include <BulletBuoyancy/bullet/btOpenClBuoyancyBackend.h>
 
-#include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/integrals/DragClusters.h>
@@ -107,7 +106,8 @@ struct btOpenClBuoyancyBackend::Impl {
     std::uint64_t substep = 0, hydroDone = ~0ull, dragDone = ~0ull;
     double dt = 0;
     struct Body {
-        const btBuoyancyAction* action = nullptr;
+        const btBuoyancyDeviceBody* body = nullptr;
+        btBuoyancyDeviceRecord record;  ///< this substep's (btBuoyancyDeviceBody::deviceRecord)
         Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
         Eigen::Vector3d com = Eigen::Vector3d::Zero();
         std::size_t hydroSlot = 0;
@@ -118,7 +118,7 @@ struct btOpenClBuoyancyBackend::Impl {
         double linearPower = 0;  ///< the linear damping's power, W
     };
     std::vector<Body> bodies;
-    std::unordered_map<const btBuoyancyAction*, std::size_t> index;
+    std::unordered_map<const btBuoyancyDeviceBody*, std::size_t> index;
     std::vector<double> params, out;
     std::vector<cl_int> tiles, bodyTiles;
     std::vector<float> staging;
@@ -147,7 +147,7 @@ struct btOpenClBuoyancyBackend::Impl {
 
     // ---- sample slots ----
     static void fingerprint(const std::vector<double>& a, const std::vector<double>& b, double* out);
-    std::size_t hydroSlotFor(const btBuoyancyAction& a);
+    std::size_t hydroSlotFor(const btBuoyancyDeviceRecord& r);
     std::size_t dragSlotFor(const buoyancy::DragClusters& c);
     /// Upload new meshes; re-bake deformable ones whose vertices changed (or whose region was overwritten).
     void syncHydroSamples();
@@ -159,11 +159,11 @@ struct btOpenClBuoyancyBackend::Impl {
     struct StateSlot {
         std::size_t offset = 0, count = 0;
     };
-    std::unordered_map<const btBuoyancyAction*, StateSlot> hydroState, dragState;
+    std::unordered_map<const btBuoyancyDeviceBody*, StateSlot> hydroState, dragState;
     std::size_t hydroStateUsed = 0, dragStateUsed = 0;
     DeviceBuffer dHydroState, dDragState;
-    std::size_t stateFor(std::unordered_map<const btBuoyancyAction*, StateSlot>& map, std::size_t& used,
-                         const btBuoyancyAction* a, std::size_t count);
+    std::size_t stateFor(std::unordered_map<const btBuoyancyDeviceBody*, StateSlot>& map, std::size_t& used,
+                         const btBuoyancyDeviceBody* a, std::size_t count);
     /// Grow a state buffer to `used` entries; a new buffer starts cold (zero displacement).
     void ensureState(DeviceBuffer& b, std::size_t used);
 

@@ -4,17 +4,13 @@
 
 #include <BulletBuoyancy/bullet/opencl/OpenClBackendImpl.h>
 
-#include <BulletBuoyancy/bullet/btBulletConvert.h>
-
-#include <BulletDynamics/Dynamics/btRigidBody.h>
-
 #include <cmath>
 
 using namespace buoyancy::opencl;
-using buoyancy::toEigen;
 
-std::size_t btOpenClBuoyancyBackend::Impl::stateFor(std::unordered_map<const btBuoyancyAction*, StateSlot>& map,
-                                                    std::size_t& used, const btBuoyancyAction* a, std::size_t count) {
+std::size_t btOpenClBuoyancyBackend::Impl::stateFor(std::unordered_map<const btBuoyancyDeviceBody*, StateSlot>& map,
+                                                    std::size_t& used, const btBuoyancyDeviceBody* a,
+                                                    std::size_t count) {
     StateSlot& s = map[a];
     if (s.count != count) {
         s.offset = used;
@@ -87,40 +83,22 @@ void btOpenClBuoyancyBackend::Impl::computeHydro() {
     if (!water) return;
     const double time = world->getTime();
     if (!packWater(*water, time)) return;
-    double flatH = 0;
-    const bool flat = water->isFlat(time, flatH);
-    const bool waves = water->isTimeVarying();
     params.clear();
     tiles.clear();
     bodyTiles.clear();
-    for (btBuoyancyAction* a : world->getActions()) {
-        // The gating of btBuoyancyAction::updateAction: bodies it would compute with the sampled method.
-        const btRigidBody* b = a->getRigidBody();
-        if (!b->getBroadphaseHandle() || b->getInvMass() == btScalar(0)) continue;
-        if (!b->isActive() && !waves) continue;
-        const btBuoyancyShape& shape = *a->getShape();
-        if (!shape.getIntegrationMethod().deviceBatched || !a->getSettings().buoyancyEnabled) continue;
-        // In the water frame, as btBuoyancyAction::updateAction (the action maps the results back).
-        const btWaterFrame& frame = world->getWaterFrame();
-        const Eigen::Isometry3d pose = frame.toWater(toEigen(b->getWorldTransform() * a->getMeshInComFrame()));
-        const Eigen::Vector3d com = frame.toWaterPoint(toEigen(b->getCenterOfMassPosition()));
-        if (!pose.matrix().allFinite() || !com.allFinite()) continue;
-        const btBuoyancyDeformable* def = a->getDeformable().get();
-        const Eigen::Vector3d bc = pose * (def ? def->getBoundsCentre() : shape.getBoundsCentre());
-        const double br = def ? def->getBoundsRadius() : shape.getBoundsRadius();
-        double lo = 0, hi = 0;
-        water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
-        if (bc.y() - br >= hi) continue;             // dry
-        if (flat && bc.y() + br <= flatH && !def) continue;  // the action's closed form (design.md 2.5)
-        if (a->getSamplesInUse().size() == 0) continue;
-        const std::size_t slot = hydroSlotFor(*a);
+    for (const btBuoyancyDeviceBody* a : world->getDeviceBodies()) {
+        btBuoyancyDeviceRecord record;
+        if (!a->deviceRecord(*water, time, record) || !record.samples || record.samples->size() == 0) continue;
+        const std::size_t slot = hydroSlotFor(record);
         index[a] = bodies.size();
         bodies.emplace_back();
-        bodies.back().action = a;
-        bodies.back().pose = pose;
-        bodies.back().com = com;
-        bodies.back().hydroSlot = slot;
-        pushPose(pose, com);
+        Body& body = bodies.back();
+        body.body = a;
+        body.pose = record.pose;
+        body.com = record.com;
+        body.record = std::move(record);
+        body.hydroSlot = slot;
+        pushPose(body.pose, body.com);
         params.resize(bodies.size() * kBodyStride, 0.0);
         addTiles(bodies.size() - 1, hydroSlots[slot].offset, hydroSlots[slot].count,
                  stateFor(hydroState, hydroStateUsed, a, hydroSlots[slot].count));
@@ -158,26 +136,24 @@ void btOpenClBuoyancyBackend::Impl::computeDrag() {
     const double rho = world->getFluidDensity();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         Body& b = bodies[i];
-        const btBuoyancySettings& s = b.action->getSettings();
-        if (!b.valid ||
-            !(s.dragCoefficient > 0 || s.skinFriction > 0 || s.linearDamping > 0 || s.radiationDamping > 0))
-            continue;
-        const buoyancy::DragClusters& c = b.action->getDragClusters();
+        const btBuoyancyDeviceRecord& r = b.record;
+        if (!b.valid || !r.dragOn || !r.dragClusters) continue;
+        const buoyancy::DragClusters& c = *r.dragClusters;
         if (c.size() == 0) continue;
-        b.action->dragEvaluationVelocity(b.h, dt, b.v, b.w);
+        b.body->dragEvaluationVelocity(b.h, dt, b.v, b.w);
         // The same linear damping as the CPU path: the viscous part plus the radiation damping faded by depth.
-        const double damping = b.action->linearDampingNow(b.h, b.pose);
+        const double damping = b.body->linearDampingNow(b.h, b.pose);
         const std::size_t slot = dragSlotFor(c);
         const std::size_t k = which.size();
         which.push_back(i);
         pushPose(b.pose, b.com);
         const double extra[9] = {b.v.x(), b.v.y(), b.v.z(), b.w.x(), b.w.y(), b.w.z(),
-                                 0.5 * rho * s.dragCoefficient, 0.5 * rho * s.skinFriction,
+                                 0.5 * rho * r.dragCoefficient, 0.5 * rho * r.skinFriction,
                                  rho * damping};
         params.insert(params.end(), extra, extra + 9);
         params.resize((k + 1) * kBodyStride, 0.0);
         addTiles(k, dragSlots[slot].offset, dragSlots[slot].count,
-                 stateFor(dragState, dragStateUsed, b.action, dragSlots[slot].count));
+                 stateFor(dragState, dragStateUsed, b.body, dragSlots[slot].count));
     }
     if (which.empty()) return;
     if (dragDirty) {

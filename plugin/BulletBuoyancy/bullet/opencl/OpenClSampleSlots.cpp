@@ -13,16 +13,15 @@ void btOpenClBuoyancyBackend::Impl::fingerprint(const std::vector<double>& a, co
     out[2] = b.empty() ? 0.0 : b.back();
 }
 
-std::size_t btOpenClBuoyancyBackend::Impl::hydroSlotFor(const btBuoyancyAction& a) {
-    const auto& def = a.getDeformable();
-    const void* key = def ? static_cast<const void*>(def.get()) : static_cast<const void*>(a.getShape().get());
+std::size_t btOpenClBuoyancyBackend::Impl::hydroSlotFor(const btBuoyancyDeviceRecord& r) {
+    const void* key = r.samplesOwner.get();
     for (std::size_t i = 0; i < hydroSlots.size(); ++i)
         if (hydroSlots[i].key == key) return i;
-    const buoyancy::SurfaceSamples& s = a.getSamplesInUse();
+    const buoyancy::SurfaceSamples& s = *r.samples;
     MeshSlot slot;
     slot.key = key;
-    slot.keep = def ? std::shared_ptr<const void>(def) : std::shared_ptr<const void>(a.getShape());
-    slot.deformable = def.get();
+    slot.keep = r.samplesOwner;
+    slot.deformable = r.deformable;
     slot.offset = hostHydro.size() / kSampleStride;
     slot.count = s.size();
     for (std::size_t i = 0; i < s.size(); ++i) {
