@@ -12,6 +12,8 @@ Rules (docs/design.md, "Folders and layers"):
      targets), is written <BulletBuoyancy/folder/File.h>.
   4. No two folders include each other, directly or around a longer circle (library and examples alike).
   5. Every test source (a .cpp below tests/ that defines Catch test cases) is named <Unit>Test.cpp.
+  6. A device backend (bullet/opencl/, bullet/btOpenClBuoyancyBackend*) does not include the action: it sees bodies
+     through btBuoyancyDeviceBody (bullet/btBuoyancyDeviceBackend.h).
 """
 import os
 import re
@@ -23,6 +25,9 @@ CORE_ORDER = ['geometry', 'mesh', 'water', 'atlas', 'bake', 'integrals', 'graph'
 # The Bullet layer: every file that includes Bullet lives here.
 BULLET_LAYER = 'bullet'
 LIBRARY_ROOT = os.path.join('plugin', 'BulletBuoyancy')
+# The device backend's files (rule 6) and the header they must not include.
+DEVICE_BACKEND = re.compile(r'^plugin/BulletBuoyancy/bullet/(opencl/|btOpenClBuoyancyBackend)')
+ACTION_HEADER = 'BulletBuoyancy/bullet/btBuoyancyAction.h'
 # Where the library's headers are included from (the library itself and everything built on it).
 SCANNED = ['plugin', 'bullet_examples', 'tests', 'fuzz']
 SOURCE_EXT = ('.h', '.hpp', '.cpp', '.inl')
@@ -77,6 +82,8 @@ def check(root):
                 quote, inc = m.group(1), m.group(2)
                 line = text.count('\n', 0, m.start()) + 1
                 where = '%s:%d: #include %s%s%s' % (rel, line, quote, inc, '"' if quote == '"' else '>')
+                if DEVICE_BACKEND.match(rel.replace(os.sep, '/')) and inc == ACTION_HEADER:
+                    problems.append('%s: a device backend includes the action; use btBuoyancyDeviceBody' % where)
                 target = None
                 if inc.startswith('BulletBuoyancy/'):
                     cand = os.path.join(root, 'plugin', inc)
@@ -194,6 +201,10 @@ def self_test():
                                            'the core (integrals/) includes the Bullet layer'),
         'later stage': ({'plugin/BulletBuoyancy/mesh/Bad.cpp': '#include <BulletBuoyancy/integrals/Sum.h>\n'},
                         'mesh/ includes integrals/, a later stage'),
+        'device backend includes the action': ({'plugin/BulletBuoyancy/bullet/btBuoyancyAction.h': '#pragma once\n',
+                                                'plugin/BulletBuoyancy/bullet/opencl/Bad.cpp':
+                                                '#include <BulletBuoyancy/bullet/btBuoyancyAction.h>\n'},
+                                               'a device backend includes the action'),
         'include root': ({'tests/mesh/BadTest.cpp': '#include "mesh/TriangleMesh.h"\n'},
                          'write it <BulletBuoyancy/mesh/TriangleMesh.h>'),
         'same-folder include': ({'plugin/BulletBuoyancy/mesh/Bad.cpp': '#include "TriangleMesh.h"\n'},
