@@ -169,8 +169,8 @@ public:
 
     ///@name Save and restore (btBuoyancyState.h, docs/integration.md "Save and restore")
     /// The body's buoyancy state as a versioned blob of bytes: everything this action carries from one substep to the
-    /// next — the temporal level-of-detail records (btHydrostaticsHistory) and its interval, check and cool-down
-    /// counters, the water queries' warm starts, the drag's kept water heights and velocities, the linear damping's
+    /// next — the temporal level of detail (btTemporalLevelOfDetail: its records, interval, check and cool-down
+    /// counters), the water queries' warm starts, the drag's kept water heights and velocities, the linear damping's
     /// share, the sleep decision's last centre of mass and the body's own sleeping thresholds, the water events'
     /// states (in the water, fully submerged, which water body), the water body chosen, the rejected-substep count and
     /// the last result. Not saved: the settings, the shape, a deformable's samples (build the action the same way), and

@@ -90,7 +90,8 @@ public:
                                 const btHydrostaticsSnapshot& predicted, double radius, double waterSlope = 1.0);
 
     /// What is left of poseDeviation once the prediction follows the actual height and attitude to first order
-    /// (the linear hydrostatic stiffness, btHydrostaticStiffnessCorrection in btTemporalLevelOfDetail::predict), as a change of draft, m:
+    /// (the linear hydrostatic stiffness, btHydrostaticStiffnessCorrection in btTemporalLevelOfDetail::predict), as
+    /// a change of draft, m:
     /// waterSlope · (|Δcom_xz| + radius θ) + 8 (|Δcom_y| + radius θ)² / radius, θ = |ΔR|_F / √2. The first term is
     /// the water height change under a waterplane point that moves sideways; the second bounds the second-order
     /// terms, a waterline area that changes with draft by up to 16 A / radius (a flare of ≈ 45° on a body of that
