@@ -446,7 +446,7 @@ TEST_CASE("defaults: an undamped bobbing sphere keeps its amplitude (energy) ove
 TEST_CASE("defaults: an undamped rolling box keeps its roll amplitude (energy) over a minute", "[bullet][temporal]") {
     // Oracle: an undamped roll keeps its energy, so its amplitude. Roll is restored through the waterplane's second
     // moment (ρ g ∫z² dA) and the turned centre of buoyancy; the prediction follows the actual roll angle through
-    // them (btBuoyancyAction::correctPose), so only the remainder is extrapolated. A 2 × 0.5 × 1 m box at density
+    // them (btHydrostaticStiffnessCorrection), so only the remainder is extrapolated. A 2 × 0.5 × 1 m box at density
     // ratio 0.5 (GM = 0.21 m, ω ≈ 4.4 rad/s) rolled 0.08 rad about its long axis.
     const btBuoyancySettings s = undampedDefaults();
     auto shape = btBuoyancyShape::create(buoyancy::makeBoxMesh(2.0, 0.5, 1.0), s);

@@ -79,7 +79,8 @@ btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBu
     m_baseLinearSleep = double(m_body->getLinearSleepingThreshold());
     m_baseAngularSleep = double(m_body->getAngularSleepingThreshold());
     // Bodies take turns at their exact evaluations (temporal level of detail): staggered by registration order.
-    m_phase = m_world->registerAction(this);
+    m_lod = btTemporalLevelOfDetail(m_shape->getUnitSolid().volume, m_shape->getBoundsRadius());
+    m_lod.setPhase(m_world->registerAction(this));
 }
 
 namespace {
@@ -108,8 +109,7 @@ void btBuoyancyAction::setSettings(const btBuoyancySettings& settings) {
     const bool recluster = settings.dragClusters != m_settings.dragClusters ||
                            settings.waterVelocityProbes != m_settings.waterVelocityProbes;
     m_settings = settings;
-    m_history.clear();  // the records may have been made with other drag or method settings
-    m_adaptedInterval = 0;
+    m_lod.restart();  // the records may have been made with other drag or method settings
     if (recluster) selectDragClusters();
 }
 
@@ -574,7 +574,7 @@ void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* c
         action.m_pendingActivate = action.m_pendingSleep = action.m_pendingImpulse = false;
         action.m_result.applied = false;
         ++action.m_rejected;
-        action.m_history.clear();
+        action.m_lod.clear();
     }
 }
 
@@ -629,7 +629,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         m_result = btBuoyancyResult();
         m_result.status = m_world->getGravityStatus();
         m_result.time = m_world->getTime();
-        m_history.clear();
+        m_lod.clear();
         m_hasLastCom = false;
         m_pendingSleep = true;
         m_pendingLinearSleep = btScalar(m_baseLinearSleep);
@@ -640,7 +640,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     bool waves = bounded ? m_world->isAnyWaterBodyTimeVarying() : water->isTimeVarying();
     if (!m_body->isActive() && !waves) {  // calm water: a sleeping body stays asleep
         m_needsPrime = true;
-        m_history.clear();
+        m_lod.clear();
         return;
     }
 
@@ -651,7 +651,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     const btWaterFrame& frame = m_world->getWaterFrame();
     if (m_frameVersion != m_world->getWaterFrameVersion()) {  // a new frame: records and caches of the old one go
         m_frameVersion = m_world->getWaterFrameVersion();
-        m_history.clear();
+        m_lod.clear();
         m_hasLastCom = false;
         m_waterCache.reset();
         m_dragCache.reset();
@@ -664,7 +664,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // throw through Bullet's stepSimulation (clippedHydrostatics threw invalid_argument).
     if (!pose.matrix().allFinite() || !com.allFinite()) {
         ++m_rejected;
-        m_history.clear();
+        m_lod.clear();
         return;
     }
 
@@ -714,7 +714,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
             }
         }
         if (waterBody != m_activeWaterBody) {
-            m_history.clear();  // its records belong to another water
+            m_lod.clear();  // its records belong to another water
             m_waterCache.reset();
             m_dragCache.reset();
             m_probeCache.reset();
@@ -738,16 +738,16 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
             for (const buoyancy::WaterRegion& region : m_regionsReached) waves = waves || region.water->isTimeVarying();
         if (!m_body->isActive() && !waves) {
             m_needsPrime = true;
-            m_history.clear();
+            m_lod.clear();
             return;
         }
     }
     const double rho = m_activeDensity;
     if (water && !straddling) water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
-    if (straddling) m_history.clear();  // no temporal level of detail across regions (evaluated exactly)
+    if (straddling) m_lod.clear();  // no temporal level of detail across regions (evaluated exactly)
     if (!water || bc.y() - br >= hi) {
         m_needsPrime = false;  // dry: the missed kick was zero
-        m_history.clear();
+        m_lod.clear();
         m_hasLastCom = false;  // out of the water Bullet's own sleeping test is right again
         m_pendingSleep = true;
         m_pendingLinearSleep = btScalar(m_baseLinearSleep);
@@ -762,23 +762,22 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // Temporal level of detail (settings.hydrostaticsInterval, btHydrostaticsHistory): exact at this body's
     // evaluation substeps, predicted in between while the checks allow it.
     const std::uint64_t substep = m_world->getSubstep();
-    // This body's interval: the resolved one, or a divisor of it after repeated misses (recordHydrostatics).
-    const int resolved = btBuoyancyResolveInterval(m_settings, dt);
-    if (m_adaptedInterval <= 0 || m_adaptedInterval > resolved || resolved % m_adaptedInterval != 0) {
-        m_adaptedInterval = resolved;
-        m_checkMisses = 0;
-        m_checkPasses = 0;
-    }
-    const int interval = m_adaptedInterval;
-    m_interval = interval;
-    m_tolerance = btBuoyancyResolveReuseTolerance(m_settings);
-    const bool temporalLod =
-        interval > 1 && !straddling && m_settings.buoyancyEnabled && !m_deformable && !m_world->getDeviceBackend();
-    const bool evaluationSubstep = temporalLod && (substep + m_phase) % std::uint64_t(interval) == 0;
+    btTemporalLevelOfDetailSettings lodSettings;
+    lodSettings.interval = btBuoyancyResolveInterval(m_settings, dt);
+    lodSettings.tolerance = btBuoyancyResolveReuseTolerance(m_settings);
+    m_lod.begin(lodSettings);
+    btTemporalLevelOfDetailSubstep lodStep;
+    lodStep.substep = substep;
+    lodStep.time = time;
+    lodStep.dt = dt;
+    lodStep.density = rho;
+    lodStep.gravity = g;
+    const bool temporalLod = m_lod.getInterval() > 1 && !straddling && m_settings.buoyancyEnabled && !m_deformable &&
+                             !m_world->getDeviceBackend();
+    const bool evaluationSubstep = temporalLod && m_lod.isEvaluationSubstep(substep);
     btHydrostaticsSnapshot prediction;
-    const bool predicted =
-        temporalLod && !evaluationSubstep && !m_needsPrime &&
-        predictHydrostatics(substep, pose, com, bc.y() - br, bc.y() + br, lo, hi, prediction);
+    const bool predicted = temporalLod && !evaluationSubstep && !m_needsPrime &&
+                           m_lod.predict(lodStep, pose, com, bc.y() - br, bc.y() + br, lo, hi, prediction);
     buoyancy::HydrostaticsResult h = predicted ? prediction.hydrostatics : buoyancy::HydrostaticsResult();
 
     // Fewer wave queries (design.md 2.5): on a non-flat surface, one query per node of a small grid over
@@ -819,7 +818,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     }
 
     const buoyancy::WaterPatch* built = patch ? patch : dragPatch;
-    if (!predicted) m_lastWaterSlope = flat ? 0.0 : built ? built->slopeBound() : 1.0;
+    if (!predicted) m_lod.setWaterSlope(flat ? 0.0 : built ? built->slopeBound() : 1.0);
 
     const buoyancy::IntegrationMethod& method = m_shape->getIntegrationMethod();
     bool onDevice = false;  // h came from the world's device backend
@@ -852,7 +851,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
             }
         } catch (const std::exception&) {
             ++m_rejected;
-            m_history.clear();
+            m_lod.clear();
             return;
         }
     }
@@ -902,10 +901,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     Eigen::Vector3d dragF = Eigen::Vector3d::Zero(), dragT = Eigen::Vector3d::Zero(), uMean = Eigen::Vector3d::Zero();
     double linearPower = 0;
     bool dragComputed = false;  // linearPower is this substep's (not an extrapolated drag)
-    if (predicted && dragOn &&
-        btHydrostaticsHistory::velocityDeviation(v, w, prediction, m_shape->getBoundsRadius()) <=
-            allowedVelocityDeviation(h.waterline_area, (v - m_lastMeanWaterVelocity).norm() +
-                                                           m_shape->getBoundsRadius() * w.norm())) {
+    if (predicted && dragOn && m_lod.dragFollows(v, w, m_lastMeanWaterVelocity, prediction, g)) {
         // Temporal level of detail: the extrapolated drag, while the motion follows the extrapolated one.
         dragF = prediction.dragForce;
         dragT = prediction.dragTorque;
@@ -925,7 +921,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         exact.dragTorque = dragT;
         exact.linearVelocity = v;
         exact.angularVelocity = w;
-        recordHydrostatics(substep, exact, meff.y(), dt);  // the heave's
+        m_lod.record(lodStep, exact, meff.y());  // the heave's
     }
 
     // Drag solved at the end-of-step velocity (design.md 2.6, "Implicit drag"): the impulse (J, L) is scaled by s so
@@ -1018,7 +1014,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     btVector3 J = toBullet(frame.toWorldVector(linearImpulse)), L = toBullet(frame.toWorldVector(angularImpulse));
     if (m_marine.enabled && !marineImpulse(h, dt, J, L)) {  // Fossen's model (design.md 2.10)
         ++m_rejected;
-        m_history.clear();
+        m_lod.clear();
         return;
     }
     const btVector3 v1 = m_body->getLinearVelocity() + J * m_body->getInvMass() * m_body->getLinearFactor();
@@ -1027,7 +1023,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         !toEigen(w1).allFinite() || !toEigen(J).allFinite() || !toEigen(L).allFinite()) {
         ++m_rejected;
         m_marineSubstep = 0;
-        m_history.clear();
+        m_lod.clear();
         return;
     }
     // Sleeping (design.md 3): at rest when the energy above the hydrostatic equilibrium is a small fraction of
@@ -1092,157 +1088,6 @@ double btBuoyancyAction::energyAboveEquilibrium(const buoyancy::HydrostaticsResu
         energy += tilt.squaredNorm() / (2.0 * rhoG * weakest);
     }
     return energy;
-}
-
-double btBuoyancyAction::reuseLength(double waterlineArea) const {
-    // ℓ = V / A_waterline: the draft change that moves the pressure force by ρ g V; a body under water
-    // (A_waterline = 0) is bounded by V^(1/3).
-    const double volume = m_shape->getUnitSolid().volume;
-    const double volume23 = std::cbrt(volume) * std::cbrt(volume);
-    return volume / std::max(waterlineArea, volume23);
-}
-
-double btBuoyancyAction::allowedPoseDeviation(double waterlineArea) const {
-    // A drift δ changes the pressure force by about ρ g A_waterline δ, a fraction δ / ℓ of ρ g V: allow the
-    // tolerance's worth.
-    return m_tolerance * reuseLength(waterlineArea);
-}
-
-double btBuoyancyAction::allowedVelocityDeviation(double waterlineArea, double relativeSpeed) const {
-    // The velocity scale of ℓ: sqrt(g ℓ) (the speed of a body falling through its draft); drag changes by a
-    // fraction of the tolerance when the velocity leaves the extrapolated one by that. A moving body may also
-    // deviate by kDragReuseFraction of its speed through the water: quadratic drag then changes by twice that
-    // fraction of itself (linear damping and skin friction by that fraction), 1 %, below the error the default drag
-    // clusters accept (0.35–4.3 % of the drag force against every fine sample, docs/benchmarks drag_lod.csv).
-    constexpr double kDragReuseFraction = 0.005;
-    return std::max(m_tolerance * std::sqrt(m_world->getGravity() * reuseLength(waterlineArea)),
-                    kDragReuseFraction * relativeSpeed);
-}
-
-void btBuoyancyAction::correctPose(btHydrostaticsSnapshot& predicted, const Eigen::Vector3d& com,
-                                    const Eigen::Matrix3d& rotation) const {
-    btHydrostaticStiffnessCorrection(predicted, com, rotation, m_activeDensity * m_world->getGravity());
-}
-bool btBuoyancyAction::predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose,
-                                           const Eigen::Vector3d& com, double bodyLow, double bodyHigh,
-                                           double waterLow, double waterHigh,
-                                           btHydrostaticsSnapshot& predicted) const {
-    const int interval = m_interval;
-    if (m_reuseCooldown > 0 || !m_history.canPredict(substep, m_world->getTime(), interval)) return false;
-    predicted = m_history.extrapolate(substep, interval);
-    // A body about to go entirely under water or out of it: the submerged volume saturates there (a kink in time
-    // that no polynomial follows; measured: a boat overrun by a crest was predicted 0.12 % of ρ g V off). While the
-    // body straddles the surface, two more intervals at the last interval's rate of volume change must keep it
-    // within the tolerance of both ends.
-    const double volume = m_shape->getUnitSolid().volume, v0 = m_history.volume(0, interval);
-    if (predicted.hydrostatics.waterline_area > 0) {
-        const double reach = 2.0 * std::abs(v0 - m_history.volume(1, interval));
-        if (!(v0 + reach <= (1.0 - m_tolerance) * volume && v0 - reach >= m_tolerance * volume)) return false;
-    } else if (v0 > 0.5 * volume ? !(bodyHigh < waterLow) : !(bodyLow > waterHigh)) {
-        // Entirely under water (or out of it) at the last evaluation, and now within reach of the surface: the body
-        // may be surfacing (or landing), which no extrapolation of the records sees. Measured: a boat thrown clear of
-        // the swell was predicted dry for 6 substeps while it plunged back in, 0.35 % of ρ g V off at the end.
-        return false;
-    }
-    // Pose check: a body moved by a contact, a teleport or an impulse leaves the extrapolated pose. With the
-    // waterplane's moments the prediction follows the actual height and attitude to first order (correctPose), and
-    // what is left is a horizontal drift over sloped water and the second-order terms; without them, the drift.
-    const double radius = m_shape->getBoundsRadius();
-    double deviation;
-    if (predicted.hydrostatics.waterplane.valid)
-        deviation = btHydrostaticsHistory::correctedPoseDeviation(com, pose.linear(), predicted, radius,
-                                                                  m_lastWaterSlope);
-    else
-        deviation = btHydrostaticsHistory::poseDeviation(com, pose.linear(), predicted, radius, m_lastWaterSlope);
-    correctPose(predicted, com, pose.linear());
-    return deviation <= allowedPoseDeviation(predicted.hydrostatics.waterline_area) &&
-           predicted.hydrostatics.force.allFinite() && predicted.hydrostatics.torque.allFinite() &&
-           predicted.dragForce.allFinite() && predicted.dragTorque.allFinite();
-}
-
-void btBuoyancyAction::recordHydrostatics(std::uint64_t substep, const btHydrostaticsSnapshot& exact,
-                                          double effectiveMass, double dt) {
-    const int interval = m_interval;
-    const buoyancy::HydrostaticsResult& h = exact.hydrostatics;
-    const double scale = m_activeDensity * m_world->getGravity() * m_shape->getUnitSolid().volume;
-    const double diameter = 2.0 * m_shape->getBoundsRadius();
-    // Check the predictor against this exact evaluation (one interval past the newest record: a little further than
-    // any substep it predicted). A miss makes the body evaluate exactly until two checks in a row pass (one pass after a
-    // miss was often luck: in a fleet of 200 boats in the scaling sea the worst predicted substep fell from 0.095 % to
-    // 0.054 % of ρ g V with this and the next rule, at the same share of substeps predicted). Two misses in a row, or
-    // three in the last four checks: the body's motion is too fast for its interval (the extrapolation's error grows
-    // like the interval⁴), which is halved
-    // (down to 2, and only to a divisor of the resolved interval); it is doubled back after 16 passes in a row whose
-    // mean error × 2⁴ stays within half the tolerance, or after 64 (a miss in the first four checks after a
-    // doubling halves it again at once). The records are kept across the switches (btHydrostaticsHistory keeps
-    // seven, and interpolates the two a halving needs), so predictions go on without a warm-up. Measured: an
-    // undamped sphere bobbing at ω = 4.4 rad/s missed half its checks at 1/30 s and lost 0.5 % of its amplitude a
-    // minute through the exact intervals the misses forced; with the halving 0.3 %. A single miss (a wave
-    // overrunning a deck) keeps the interval.
-    const double time = m_world->getTime();
-    bool halve = false;
-    if (m_history.canCheck(substep, time, interval)) {
-        btHydrostaticsSnapshot p = m_history.extrapolate(substep, interval);
-        correctPose(p, exact.com, exact.rotation);  // as a prediction at this pose would be
-        // The predictions reach a = (K − 1)/K of the interval, where the cubic's remainder a(a+1)(a+2)(a+3)/24 is
-        // that fraction of its value at a = 1 (0.76 at K = 8, 0.56 at K = 4): the error of the furthest prediction.
-        const double a = double(interval - 1) / double(interval);
-        const double reach = a * (a + 1.0) * (a + 2.0) * (a + 3.0) / 24.0;
-        const double error = reach * std::max((p.hydrostatics.force - h.force).norm() / scale,
-                                              (p.hydrostatics.torque - h.torque).norm() / (scale * diameter));
-        const bool miss = !(error <= m_tolerance);
-        const int probation = m_probation;
-        if (m_probation > 0) --m_probation;
-        m_checkMisses = std::uint8_t((m_checkMisses << 1) | (miss ? 1 : 0));
-        const int resolved = btBuoyancyResolveInterval(m_settings, dt);
-        if (miss) {
-            m_checkPasses = 0;
-            m_passingErrorSum = 0;
-            const int bits = (m_checkMisses & 1) + ((m_checkMisses >> 1) & 1) + ((m_checkMisses >> 2) & 1) +
-                             ((m_checkMisses >> 3) & 1);
-            const bool twoInARow = (m_checkMisses & 3) == 3;
-            if ((bits >= 3 || twoInARow || probation > 0) && interval % 2 == 0 && interval / 2 >= 2) {
-                m_adaptedInterval = interval / 2;  // this substep is on the halved interval's grid too
-                m_checkMisses = 0;
-                m_probation = 0;
-                halve = true;  // the records' spacing, once this evaluation is pushed
-            } else {
-                m_reuseCooldown = 2;  // predictions resume after two passing checks in a row
-            }
-        } else {
-            if (m_reuseCooldown > 0) --m_reuseCooldown;
-            m_passingErrorSum += error;
-            // Doubled, the error would grow ≈ 2⁴ times: doubled after 16 passes when the mean error so grown stays
-            // within half the tolerance, else after 64.
-            ++m_checkPasses;
-            const bool smooth =
-                m_checkPasses >= 16 && 16.0 * m_passingErrorSum / double(m_checkPasses) <= 0.5 * m_tolerance;
-            if (interval < resolved && (smooth || m_checkPasses >= 64) &&
-                resolved % (2 * interval) == 0 &&
-                (substep + m_phase) % std::uint64_t(2 * interval) == 0) {
-                m_adaptedInterval = 2 * interval;  // on the doubled interval's grid: the next record is 2K away
-                m_checkPasses = 0;
-                m_passingErrorSum = 0;
-                m_checkMisses = 0;  // (the records kept include every other one at the doubled spacing)
-                m_probation = 4;    // a miss in the next four checks halves it again at once
-            }
-        }
-    } else if (m_reuseCooldown > 0) {
-        --m_reuseCooldown;
-    }
-    // Stiffness check: extrapolating over an interval is only accurate while the heave is slow against it
-    // (ω K dt ≤ 0.3 with ω² = ρ g A_waterline / m_eff, design.md 2.7); a light, stiff body evaluates exactly.
-    const double omega2 = m_activeDensity * m_world->getGravity() * h.waterline_area / effectiveMass;
-    const double step = double(interval) * dt;
-    if (!(omega2 * step * step <= 0.09)) m_reuseCooldown = std::max(m_reuseCooldown, 1);
-    const bool finite = h.force.allFinite() && h.torque.allFinite() && std::isfinite(h.submerged_volume) &&
-                        exact.dragForce.allFinite() && exact.dragTorque.allFinite();
-    if (finite) {
-        m_history.push(substep, time, exact);
-        if (halve) m_history.halveSpacing(interval);
-    } else {
-        m_history.clear();
-    }
 }
 
 void btBuoyancyAction::debugDraw(btIDebugDraw* debugDrawer) {
@@ -1360,17 +1205,7 @@ std::vector<unsigned char> btBuoyancyAction::saveState() const {
     out.i32(m_activeWaterBody);
     out.boolean(m_needsPrime);
     // Temporal level of detail.
-    m_history.writeState(out);
-    out.i32(m_reuseCooldown);
-    out.u64(m_phase);
-    out.i32(m_interval);
-    out.i32(m_adaptedInterval);
-    out.u8(m_checkMisses);
-    out.i32(m_checkPasses);
-    out.f64(m_passingErrorSum);
-    out.i32(m_probation);
-    out.f64(m_tolerance);
-    out.f64(m_lastWaterSlope);
+    m_lod.writeState(out);
     writeEigen(out, m_lastMeanWaterVelocity);
     out.f64(m_linearDamping);
     out.f64(m_linearShare);
@@ -1447,18 +1282,8 @@ void btBuoyancyAction::restoreState(const unsigned char* data, std::size_t size)
         in.fail("the body was in water body " + std::to_string(activeWaterBody) + ", the world has " +
                 std::to_string(m_world->getWaterBodies().size()));
     const bool needsPrime = in.boolean("needs prime");
-    btHydrostaticsHistory history;
-    history.readState(in);
-    const int reuseCooldown = in.i32("reuse cool-down");
-    const std::uint64_t phase = in.u64("phase");
-    const int interval = in.i32("interval");
-    const int adaptedInterval = in.i32("adapted interval");
-    const std::uint8_t checkMisses = in.u8("check misses");
-    const int checkPasses = in.i32("check passes");
-    const double passingErrorSum = in.f64("passing error sum");
-    const int probation = in.i32("probation");
-    const double tolerance = in.f64("tolerance");
-    const double lastWaterSlope = in.f64("last water slope");
+    btTemporalLevelOfDetail lod = m_lod;  // the body's volume and radius; the rest is read
+    lod.readState(in);
     const Eigen::Vector3d lastMeanWaterVelocity = readEigen(in, "last mean water velocity");
     const double linearDamping = in.f64("linear damping");
     const double linearShare = in.f64("linear share");
@@ -1520,17 +1345,7 @@ void btBuoyancyAction::restoreState(const unsigned char* data, std::size_t size)
     m_activeDensity = activeDensity;
     m_activeWaterBody = activeWaterBody;
     m_needsPrime = needsPrime;
-    m_history = history;
-    m_reuseCooldown = reuseCooldown;
-    m_phase = phase;
-    m_interval = interval;
-    m_adaptedInterval = adaptedInterval;
-    m_checkMisses = checkMisses;
-    m_checkPasses = checkPasses;
-    m_passingErrorSum = passingErrorSum;
-    m_probation = probation;
-    m_tolerance = tolerance;
-    m_lastWaterSlope = lastWaterSlope;
+    m_lod = lod;
     m_lastMeanWaterVelocity = lastMeanWaterVelocity;
     m_linearDamping = linearDamping;
     m_linearShare = linearShare;

@@ -14,7 +14,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
-#include <BulletBuoyancy/bullet/btHydrostaticsHistory.h>
+#include <BulletBuoyancy/bullet/btTemporalLevelOfDetail.h>
 #include <BulletBuoyancy/bullet/btMarineHydrodynamics.h>
 #include <BulletBuoyancy/integrals/DragClusters.h>
 #include <BulletBuoyancy/integrals/Hydrostatics.h>
@@ -169,8 +169,8 @@ public:
 
     ///@name Save and restore (btBuoyancyState.h, docs/integration.md "Save and restore")
     /// The body's buoyancy state as a versioned blob of bytes: everything this action carries from one substep to the
-    /// next — the temporal level-of-detail records (btHydrostaticsHistory) and its interval, check and cool-down
-    /// counters, the water queries' warm starts, the drag's kept water heights and velocities, the linear damping's
+    /// next — the temporal level of detail (btTemporalLevelOfDetail: its records, interval, check and cool-down
+    /// counters), the water queries' warm starts, the drag's kept water heights and velocities, the linear damping's
     /// share, the sleep decision's last centre of mass and the body's own sleeping thresholds, the water events'
     /// states (in the water, fully submerged, which water body), the water body chosen, the rejected-substep count and
     /// the last result. Not saved: the settings, the shape, a deformable's samples (build the action the same way), and
@@ -245,27 +245,6 @@ private:
     Eigen::Vector3d addedMassOf(const buoyancy::HydrostaticsResult& h, double rho) const;
     /// linearDampingNow given the depth of the top of the body's bounding sphere under the water (m, ≥ 0).
     double linearDampingAt(const buoyancy::HydrostaticsResult& h, double topDepth) const;
-    /// Temporal level of detail: fill `predicted` with this substep's extrapolated evaluation and return true,
-    /// or return false when this substep must be evaluated exactly (btBuoyancySettings::hydrostaticsInterval).
-    /// bodyLow / bodyHigh: the lowest and highest world height of the body's bounding sphere, waterLow / waterHigh the
-    /// water's bounds over its footprint (btWaterSurface::heightBounds), m.
-    bool predictHydrostatics(std::uint64_t substep, const Eigen::Isometry3d& pose, const Eigen::Vector3d& com,
-                             double bodyLow, double bodyHigh, double waterLow, double waterHigh,
-                             btHydrostaticsSnapshot& predicted) const;
-    /// Temporal level of detail: after an exact evaluation at one of the body's evaluation substeps, check the
-    /// predictor against it, then record it.
-    void recordHydrostatics(std::uint64_t substep, const btHydrostaticsSnapshot& exact, double effectiveMass, double dt);
-    /// Temporal level of detail: ℓ = V / max(A_waterline, V^(2/3)), the draft change that moves the pressure force by
-    /// ρ g V, m; the pose and velocity checks scale with it.
-    double reuseLength(double waterlineArea) const;
-    /// Temporal level of detail: the velocity deviation (btHydrostaticsHistory::velocityDeviation) up to which the
-    /// extrapolated drag is used, m/s. relativeSpeed: |v − u_water| + radius |ω|, m/s.
-    double allowedVelocityDeviation(double waterlineArea, double relativeSpeed) const;
-    /// Temporal level of detail: the pose deviation up to which the extrapolated hydrostatics are used, m.
-    double allowedPoseDeviation(double waterlineArea) const;
-    /// Temporal level of detail: move an extrapolated pressure force, torque and volume from the extrapolated pose to
-    /// the actual one (COM `com`, m; `rotation` body → world): btHydrostaticStiffnessCorrection.
-    void correctPose(btHydrostaticsSnapshot& predicted, const Eigen::Vector3d& com, const Eigen::Matrix3d& rotation) const;
     /// (Re)select the shared drag clusters for the current settings and size the drag workspace.
     void selectDragClusters();
     /// Whole body below the lowest water point of flat water: the closed form from the dry mass properties.
@@ -321,21 +300,8 @@ private:
     bool m_needsPrime = true;
     /// @name Temporal level of detail (settings.hydrostaticsInterval)
     ///@{
-    btHydrostaticsHistory m_history;   ///< the last exact evaluations at this body's evaluation substeps
-    int m_reuseCooldown = 0;           ///< passing checks (or evaluation substeps without one) before predicting again
-    std::uint64_t m_phase = 0;         ///< the body evaluates exactly when (substep + m_phase) % interval == 0
-    int m_interval = 1;                ///< this substep's interval (m_adaptedInterval)
-    /// This body's interval: settings.hydrostaticsInterval resolved, halved after repeated misses of the check
-    /// and doubled back after 64 passes (recordHydrostatics); 0 until the first substep.
-    int m_adaptedInterval = 0;
-    std::uint8_t m_checkMisses = 0;    ///< the last eight checks, one bit per miss (newest lowest)
-    int m_checkPasses = 0;             ///< checks passed in a row at a halved interval
-    double m_passingErrorSum = 0;      ///< the sum of those checks' errors, fraction of ρ g V
-    int m_probation = 0;               ///< checks left in which one miss undoes a doubling
-    double m_tolerance = 1e-4;         ///< this substep's prediction tolerance (btBuoyancyResolveReuseTolerance)
-    /// Slope scale of the water over the body at the last exact evaluation (0 flat, WaterPatch::slopeBound on a
-    /// patch, 1 otherwise): weighs a horizontal drift in the pose check (btHydrostaticsHistory::poseDeviation).
-    double m_lastWaterSlope = 1.0;
+    /// The controller: records, interval, checks (btTemporalLevelOfDetail.h).
+    btTemporalLevelOfDetail m_lod;
     Eigen::Vector3d m_lastMeanWaterVelocity = Eigen::Vector3d::Zero(); ///< of the last computed drag, m/s
     double m_linearDamping = 0;     ///< this substep's linear damping coefficient b (linearDampingNow), m/s
     /// Share of the last computed drag's power that was linear damping (0..1): how the implicit drag solve splits an

@@ -1,10 +1,11 @@
 #pragma once
 /// @file btHydrostaticsHistory.h
-/// Temporal level of detail (btBuoyancySettings::hydrostaticsInterval): a body evaluates its
+/// The records of the temporal level of detail (btBuoyancySettings::hydrostaticsInterval; the controller is
+/// btTemporalLevelOfDetail): a body evaluates its
 /// hydrostatics and drag exactly every K-th substep and, in between, predicts them by extrapolating the last four
 /// exact evaluations in time (a cubic). The prediction is refused when the body's pose has left the pose
 /// extrapolated the same way (a contact, a teleport, a user impulse) or when the last check of the predictor
-/// against an exact evaluation failed; the action then evaluates exactly.
+/// against an exact evaluation failed; the body is then evaluated exactly.
 
 #include <BulletBuoyancy/integrals/Hydrostatics.h>
 
@@ -89,7 +90,8 @@ public:
                                 const btHydrostaticsSnapshot& predicted, double radius, double waterSlope = 1.0);
 
     /// What is left of poseDeviation once the prediction follows the actual height and attitude to first order
-    /// (the linear hydrostatic stiffness, btBuoyancyAction::correctPose), as a change of draft, m:
+    /// (the linear hydrostatic stiffness, btHydrostaticStiffnessCorrection in btTemporalLevelOfDetail::predict), as
+    /// a change of draft, m:
     /// waterSlope · (|Δcom_xz| + radius θ) + 8 (|Δcom_y| + radius θ)² / radius, θ = |ΔR|_F / √2. The first term is
     /// the water height change under a waterplane point that moves sideways; the second bounds the second-order
     /// terms, a waterline area that changes with draft by up to 16 A / radius (a flare of ≈ 45° on a body of that
