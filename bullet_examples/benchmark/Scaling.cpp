@@ -70,15 +70,34 @@ private:
 };
 class ClockStop : public btActionInterface {
 public:
-    explicit ClockStop(BuoyancyClock& c) : m_clock(c) {}
+    ClockStop(BuoyancyClock& c, const std::vector<std::unique_ptr<btBuoyancyAction>>& actions)
+        : m_clock(c), m_actions(actions) {}
     void updateAction(btCollisionWorld*, btScalar) override {
         m_clock.seconds += std::chrono::duration<double>(Clock::now() - m_clock.start).count();
+        // Outside the timed span: how many bodies predicted this substep (the temporal level of detail's share).
+        for (const auto& a : m_actions) m_predicted += a->getLastResult().predicted ? 1 : 0;
+        m_bodySubsteps += long(m_actions.size());
     }
     void debugDraw(btIDebugDraw*) override {}
+    /// Predicted body-substeps / body-substeps since the last reset (0 when none).
+    double predictedShare() const { return m_bodySubsteps > 0 ? double(m_predicted) / double(m_bodySubsteps) : 0.0; }
+    void reset() { m_predicted = m_bodySubsteps = 0; }
 
 private:
     BuoyancyClock& m_clock;
+    const std::vector<std::unique_ptr<btBuoyancyAction>>& m_actions;
+    long m_predicted = 0, m_bodySubsteps = 0;
 };
+
+/// The machine's 1-minute load average (/proc/loadavg; −1 where there is none): runs on a loaded machine are slower.
+double loadAverage() {
+    double load = -1;
+    if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
+        if (std::fscanf(f, "%lf", &load) != 1) load = -1;
+        std::fclose(f);
+    }
+    return load;
+}
 
 }  // namespace
 
@@ -176,7 +195,7 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
             ParallelBuoyancy batch;
             BuoyancyClock clock;
             ClockStart clockStart(clock);
-            ClockStop clockStop(clock);
+            ClockStop clockStop(clock, actions);
             if (viaWorld) world.addAction(&clockStart);
             btBuoyantBodySettings bs;
             bs.density = density;
@@ -211,11 +230,13 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
             struct Window {
                 double wall, buoyancy;
                 long contacts;
+                double predictedShare;
             };
             std::vector<Window> windows;
             for (int k = 0; k < std::max(1, o.windows); ++k) {
                 batch.seconds = 0;
                 clock.seconds = 0;
+                clockStop.reset();
                 long contacts = 0;
                 const auto t0 = Clock::now();
                 for (long f = 0; f < frames; ++f) {
@@ -224,7 +245,8 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
                         if (dispatcher.getManifoldByIndexInternal(m)->getNumContacts() > 0) ++contacts;
                 }
                 const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
-                windows.push_back({wall, viaWorld ? clock.seconds : batch.seconds, contacts});
+                windows.push_back({wall, viaWorld ? clock.seconds : batch.seconds, contacts,
+                                   viaWorld ? clockStop.predictedShare() : -1.0});
             }
             if (viaWorld) {
                 world.removeAction(&clockStart);
@@ -258,11 +280,15 @@ std::vector<ScalingRow> runScaling(const TriangleMesh& mesh, const std::string& 
             r.nsPerBodySubstepTotal = 1e9 * median.wall / (double(n) * double(r.substeps));
             r.nsPerBodySubstepBuoyancy = 1e9 * median.buoyancy / (double(n) * double(r.substeps));
             r.contacts = median.contacts;
+            r.predictedShare = median.predictedShare;
+            r.loadAverage = loadAverage();
             rows.push_back(r);
             log << "  scaling " << model << (o.variant.empty() ? "" : " [" + o.variant + "]") << " driver " << driver
                 << " x" << n << ", " << r.threads << " thread(s): " << r.nsPerBodySubstepTotal
                 << " ns/body-substep total, " << r.nsPerBodySubstepBuoyancy << " buoyancy; real-time factor "
-                << r.realtimeFactor << " (median of " << r.windows << ")\n";
+                << r.realtimeFactor << " (median of " << r.windows << ")";
+            if (r.predictedShare >= 0) log << ", " << 100 * r.predictedShare << " % of body-substeps predicted";
+            log << ", load average " << loadAverage() << "\n";
         }
     }
     }
@@ -322,13 +348,14 @@ void writeScalingCsv(const std::string& path, const std::vector<ScalingRow>& row
     if (!f) throw std::runtime_error("cannot write " + path);
     std::fprintf(f, "model,triangles,method,variant,driver,bodies,threads,substeps,sim_seconds,wall_seconds,buoyancy_seconds,"
                     "realtime_factor,windows,realtime_factor_min,realtime_factor_max,ns_per_body_substep_total,"
-                    "ns_per_body_substep_buoyancy,ns_per_body_substep_bullet,contact_manifolds\n");
+                    "ns_per_body_substep_buoyancy,ns_per_body_substep_bullet,contact_manifolds,predicted_share,"
+                    "load_average\n");
     for (const ScalingRow& r : rows)
-        std::fprintf(f, "%s,%zu,%s,%s,%s,%d,%d,%ld,%.4f,%.4f,%.4f,%.4g,%d,%.4g,%.4g,%.1f,%.1f,%.1f,%ld\n", r.model.c_str(),
+        std::fprintf(f, "%s,%zu,%s,%s,%s,%d,%d,%ld,%.4f,%.4f,%.4f,%.4g,%d,%.4g,%.4g,%.1f,%.1f,%.1f,%ld,%.4f,%.2f\n", r.model.c_str(),
                      r.triangles, r.method.c_str(), r.variant.c_str(), r.driver.c_str(), r.bodies, r.threads, r.substeps,
                      r.simSeconds, r.wallSeconds, r.buoyancySeconds, r.realtimeFactor, r.windows, r.realtimeFactorMin,
                      r.realtimeFactorMax, r.nsPerBodySubstepTotal, r.nsPerBodySubstepBuoyancy,
-                     r.nsPerBodySubstepTotal - r.nsPerBodySubstepBuoyancy, r.contacts);
+                     r.nsPerBodySubstepTotal - r.nsPerBodySubstepBuoyancy, r.contacts, r.predictedShare, r.loadAverage);
     if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + path);
 }
 

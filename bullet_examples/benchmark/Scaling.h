@@ -63,6 +63,10 @@ struct ScalingRow {
     double nsPerBodySubstepTotal = 0;    ///< wall / (bodies × substeps), ns
     double nsPerBodySubstepBuoyancy = 0; ///< buoyancy wall / (bodies × substeps), ns
     long contacts = 0;            ///< contact manifolds with points, summed over substeps
+    /// Share of the median window's body-substeps whose hydrostatics the temporal level of detail predicted (0..1;
+    /// −1 for the `bench` driver, which does not count them)
+    double predictedShare = -1;
+    double loadAverage = -1;      ///< the machine's 1-minute load average at the row's end (−1: unknown)
 };
 
 /// The scaling sea: four Gerstner waves, amplitudes 1, 0.6, 0.35, 0.2 m, wavelengths 60, 35, 20, 10 m.

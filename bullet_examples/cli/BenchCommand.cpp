@@ -33,12 +33,18 @@ void addBenchCommand(CLI::App& app, BenchOptions& options) {
                   "scaling, lod, opencl, primitives");
     b->add_option("--opencl-bodies", options.openclBodies,
                   "Body counts of the opencl part, comma-separated, each 1 to 100000 (default 1,10,100,1000)");
+    b->add_option("--scaling-bodies", options.scalingBodies,
+                  "Body counts of the scaling part, comma-separated, each 1 to 100000: only the public-API rows at the "
+                  "default settings, 3 windows each (default: the full set)");
+    b->add_option("--scaling-threads", options.scalingThreads,
+                  "Thread counts of the scaling part, comma-separated, each 1 to 1024 (default 1,2)");
 }
 
 namespace {
 
-/// "1,10,100" → {1, 10, 100}; anything else is a UsageError naming --opencl-bodies.
-std::vector<int> parseOpenClBodies(const std::string& text) {
+/// "1,10,100" → {1, 10, 100}, each in [1, most]; anything else is a UsageError naming `option`.
+std::vector<int> parseCounts(const std::string& text, const std::string& option, long most, const char* what) {
+    const std::string range = std::string(what) + " from 1 to " + std::to_string(most);
     std::vector<int> counts;
     std::stringstream ss(text);
     std::string item;
@@ -50,12 +56,12 @@ std::vector<int> parseOpenClBodies(const std::string& text) {
         } catch (const std::exception&) {
             used = 0;
         }
-        if (used == 0 || used != item.size() || n < 1 || n > 100000)
-            throw UsageError("--opencl-bodies: '" + item + "' is not a body count from 1 to 100000 (e.g. 1,10,100,1000)");
+        if (used == 0 || used != item.size() || n < 1 || n > most)
+            throw UsageError(option + ": '" + item + "' is not a " + range + " (e.g. 1,10,100,1000)");
         counts.push_back(int(n));
     }
     if (counts.empty() || text.back() == ',')
-        throw UsageError("--opencl-bodies: '" + text + "' is not a comma-separated list of body counts (e.g. 1,10,100,1000)");
+        throw UsageError(option + ": '" + text + "' is not a comma-separated list of " + what + "s (e.g. 1,10,100,1000)");
     return counts;
 }
 
@@ -80,7 +86,14 @@ int runBench(const BenchOptions& o) {
         }
     }
     // Checked before any part runs, so a typo does not cost the parts before it.
-    const std::vector<int> openclBodies = o.openclBodies.empty() ? std::vector<int>{} : parseOpenClBodies(o.openclBodies);
+    const std::vector<int> openclBodies =
+        o.openclBodies.empty() ? std::vector<int>{} : parseCounts(o.openclBodies, "--opencl-bodies", 100000, "body count");
+    const std::vector<int> scalingBodies = o.scalingBodies.empty()
+                                               ? std::vector<int>{}
+                                               : parseCounts(o.scalingBodies, "--scaling-bodies", 100000, "body count");
+    const std::vector<int> scalingThreads = o.scalingThreads.empty()
+                                                ? std::vector<int>{}
+                                                : parseCounts(o.scalingThreads, "--scaling-threads", 1024, "thread count");
     namespace fs = std::filesystem;
     std::error_code ec;
     fs::create_directories(o.out, ec);
@@ -162,9 +175,18 @@ int runBench(const BenchOptions& o) {
         }
         // The README demo's model is the boat hull (850 triangles); the scaling figure asks for ≥ 1,000 triangles,
         // so the scaling run uses it subdivided once (3,400 triangles, the same solid).
+        if (!scalingThreads.empty()) so.threads = scalingThreads;
+        const bool chosen = !scalingBodies.empty();
+        if (chosen) {
+            // Rows asked for by count: each window is a whole simulated second (every substep of the wave period's
+            // phase the temporal level of detail sees), after 2 s of warm-up.
+            so.bodies = scalingBodies;
+            so.maxBodySubsteps = 1e12;
+            so.warmupSeconds = 2.0;
+        }
         const TriangleMesh boat = subdivideMesh(loadBoatHull());
         scale = runScaling(boat, "boat-x4", so, log);
-        if (!o.quick) {
+        if (!o.quick && !chosen) {
             // The same fleets with the water over each triangle as a plane (the exact-mesh model before the
             // curved-water default, ≈ 4–5× cheaper on these waves): what the threads give at that cost.
             ScalingOptions plane = so;
@@ -177,42 +199,44 @@ int runBench(const BenchOptions& o) {
             bench.drivers = {"bench"};
             for (const ScalingRow& r : runScaling(boat, "boat-x4", bench, log)) scale.push_back(r);
         }
-        // The 1,000-boat run with a longer temporal level of detail than the default's (hydrostaticsInterval; its error is in
-        // temporal_lod.csv): what real time costs in accuracy.
-        for (int k : {8, 12, 16}) {
-            ScalingOptions tk = so;
-            tk.bodies = {o.quick ? 10 : 1000};
-            tk.threads = o.quick ? std::vector<int>{1} : std::vector<int>{1, 2};
-            tk.settings.hydrostaticsInterval = k;
-            tk.settings.hydrostaticsReuseTolerance = 0.002;
-            tk.variant = "interval " + std::to_string(k) + " tolerance 0.2%";
-            tk.windows = 1;
-            for (const ScalingRow& r : runScaling(boat, "boat-x4", tk, log)) scale.push_back(r);
+        if (!chosen) {
+            // The 1,000-boat run with a longer temporal level of detail than the default's (hydrostaticsInterval; its
+            // error is in temporal_lod.csv): what real time costs in accuracy.
+            for (int k : {8, 12, 16}) {
+                ScalingOptions tk = so;
+                tk.bodies = {o.quick ? 10 : 1000};
+                tk.threads = o.quick ? std::vector<int>{1} : std::vector<int>{1, 2};
+                tk.settings.hydrostaticsInterval = k;
+                tk.settings.hydrostaticsReuseTolerance = 0.002;
+                tk.variant = "interval " + std::to_string(k) + " tolerance 0.2%";
+                tk.windows = 1;
+                for (const ScalingRow& r : runScaling(boat, "boat-x4", tk, log)) scale.push_back(r);
+            }
+            TemporalLodOptions to;
+            if (o.quick) {
+                to.configurations = {{1, 0.0}, {0, 0.0}, {4, 0.002}};
+                to.bodies = 2;
+                to.fleetBodies = 0;
+                to.settleSeconds = 0.5;
+                to.seconds = 0.5;
+                to.energySeconds = 5.0;
+            }
+            const std::vector<TemporalLodRow> temporal = runTemporalLod(boat, "boat-x4", to, log);
+            writeTemporalLodCsv((fs::path(o.out) / "temporal_lod.csv").string(), temporal);
+            temporalMd = temporalLodMarkdown(temporal);
+            // The same scene without the level of detail (the previous default), for the before/after ratio.
+            ScalingOptions off = so;
+            off.bodies = o.quick ? std::vector<int>{1, 10} : std::vector<int>{1, 100};
+            off.threads = {1};
+            off.maxBodySubsteps = o.quick ? so.maxBodySubsteps : 8000;  // ≈ 0.3 ms per body-substep without it
+            off.settings.dragClusters = 0;
+            off.settings.waterPatchNodes = 0;
+            off.settings.waterVelocityProbes = 0;
+            off.variant = "no-lod";
+            off.windows = 1;
+            off.warmupSeconds = 1.0 / 60;  // ≈ 0.3 ms per body-substep: a second of warm-up would take minutes
+            for (const ScalingRow& r : runScaling(boat, "boat-x4", off, log)) scale.push_back(r);
         }
-        TemporalLodOptions to;
-        if (o.quick) {
-            to.configurations = {{1, 0.0}, {0, 0.0}, {4, 0.002}};
-            to.bodies = 2;
-            to.fleetBodies = 0;
-            to.settleSeconds = 0.5;
-            to.seconds = 0.5;
-            to.energySeconds = 5.0;
-        }
-        const std::vector<TemporalLodRow> temporal = runTemporalLod(boat, "boat-x4", to, log);
-        writeTemporalLodCsv((fs::path(o.out) / "temporal_lod.csv").string(), temporal);
-        temporalMd = temporalLodMarkdown(temporal);
-        // The same scene without the level of detail (the previous default), for the before/after ratio.
-        ScalingOptions off = so;
-        off.bodies = o.quick ? std::vector<int>{1, 10} : std::vector<int>{1, 100};
-        off.threads = {1};
-        off.maxBodySubsteps = o.quick ? so.maxBodySubsteps : 8000;  // ≈ 0.3 ms per body-substep without it
-        off.settings.dragClusters = 0;
-        off.settings.waterPatchNodes = 0;
-        off.settings.waterVelocityProbes = 0;
-        off.variant = "no-lod";
-        off.windows = 1;
-        off.warmupSeconds = 1.0 / 60;  // ≈ 0.3 ms per body-substep: a second of warm-up would take minutes
-        for (const ScalingRow& r : runScaling(boat, "boat-x4", off, log)) scale.push_back(r);
         breakdown = scalingBreakdownMarkdown(boat, log);
         writeScalingCsv((fs::path(o.out) / "scaling.csv").string(), scale);
     }

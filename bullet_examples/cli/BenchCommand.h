@@ -27,6 +27,11 @@ struct BenchOptions {
     std::string parts = "speed,waves,fig9,scaling,lod,primitives";
     /// body counts of the opencl part, comma-separated, each 1 to 100,000 (empty: 1,10,100,1000; --quick: 1,10)
     std::string openclBodies;
+    /// body counts of the scaling part, comma-separated, each 1 to 100,000 (empty: the full set; set: only the public-API
+    /// rows of the default settings at these counts, 3 windows each)
+    std::string scalingBodies;
+    /// thread counts of the scaling part, comma-separated, each 1 to 1,024 (empty: 1,2)
+    std::string scalingThreads;
 };
 
 /// Register the `bench` subcommand on `app`.

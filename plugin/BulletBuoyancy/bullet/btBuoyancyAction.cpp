@@ -578,6 +578,15 @@ void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* c
     }
 }
 
+void btBuoyancyWorldPrefetch(const btBuoyancyAction& action) {
+    const auto lines = [](const void* p, std::size_t bytes) {
+        const char* c = static_cast<const char*>(p);
+        for (std::size_t k = 0; k < bytes; k += 64) __builtin_prefetch(c + k);
+    };
+    lines(&action, sizeof(btBuoyancyAction));
+    lines(action.m_body, sizeof(btRigidBody));
+}
+
 void btBuoyancyAction::applyPending() {
     m_result.linearImpulse = m_result.angularImpulse = btVector3(0, 0, 0);
     if (m_pendingActivate) m_body->activate();
@@ -772,6 +781,12 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     lodStep.dt = dt;
     lodStep.density = rho;
     lodStep.gravity = g;
+    {
+        const btVector3& origin = m_body->getWorldTransform().getOrigin();
+        const double reach = std::max({std::abs(double(origin.x())), std::abs(double(origin.y())),
+                                       std::abs(double(origin.z()))});
+        lodStep.positionResolution = double(std::numeric_limits<btScalar>::epsilon()) * reach;
+    }
     const bool temporalLod = m_lod.getInterval() > 1 && !straddling && m_settings.buoyancyEnabled && !m_deformable &&
                              !m_world->getDeviceBackend();
     const bool evaluationSubstep = temporalLod && m_lod.isEvaluationSubstep(substep);

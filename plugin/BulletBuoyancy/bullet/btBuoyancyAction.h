@@ -65,6 +65,9 @@ struct btBuoyancyResult {
 
 /// Internal (btBuoyancyWorld's batch): evaluate `action`'s body for the current substep of its world (dt, s).
 void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* collisionWorld, double dt);
+/// Internal (btBuoyancyWorld's batch): ask the CPU to bring the action's and its body's state into the cache before
+/// the action is evaluated (the batch walks many bodies whose state is no longer cached). Changes nothing.
+void btBuoyancyWorldPrefetch(const btBuoyancyAction& action);
 
 /// What btBuoyancyAction::setBodyMassFromShape set, and how exactly Bullet's diagonal inertia represents the solid.
 struct btBuoyancyMassResult {
@@ -226,6 +229,10 @@ public:
 private:
     friend class btBuoyancyImmediate;  // steps a body that is in no Bullet world (m_outsideWorld)
     friend void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* collisionWorld, double dt);
+/// Internal (btBuoyancyWorld's batch): ask the CPU to bring the action's and its body's state into the cache before
+/// the action is evaluated (the batch walks many bodies whose state is no longer cached). Changes nothing.
+void btBuoyancyWorldPrefetch(const btBuoyancyAction& action);
+    friend void btBuoyancyWorldPrefetch(const btBuoyancyAction& action);
     /// Everything of a substep that reads the body and writes only this action's state: the water, hydrostatics,
     /// drag, the temporal level of detail and the decisions; what it would write into the body is kept for
     /// applyPending. Safe to run for different bodies at once. dt: substep, s (> 0, finite).

@@ -169,7 +169,10 @@ void btBuoyancyWorld::evaluateBatch(const btCollisionWorld* from, double dt) {
     // own: its action's state, caches and scratch).
     btBuoyancyAction* const* batch = m_batch.data();
     parallelOver(n, getThreads(), FpState::current(),
-                 [batch, from, dt](int i) { btBuoyancyWorldEvaluate(*batch[i], from, dt); });
+                 [batch, from, dt, n](int i) {
+                     if (i + 1 < n) btBuoyancyWorldPrefetch(*batch[i + 1]);
+                     btBuoyancyWorldEvaluate(*batch[i], from, dt);
+                 });
 }
 
 void btBuoyancyWorld::evaluateFloodingBatch(const btCollisionWorld* from, double dt, const btFloodingAction* caller) {

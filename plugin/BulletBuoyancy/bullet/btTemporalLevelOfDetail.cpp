@@ -83,7 +83,12 @@ bool btTemporalLevelOfDetail::predict(const btTemporalLevelOfDetailSubstep& step
     else
         deviation = btHydrostaticsHistory::poseDeviation(com, pose.linear(), predicted, radius, m_lastWaterSlope);
     btHydrostaticStiffnessCorrection(predicted, com, pose.linear(), step.density * step.gravity);
-    return deviation <= allowedPoseDeviation(predicted.hydrostatics.waterline_area) &&
+    // Rounding of the stored positions: each record and the pose now are rounded to the engine's resolution, and the
+    // cubic extrapolation weighs the four records by up to 4, 6, 4 and 1 (15 × half a resolution), so a drift of
+    // kRoundingResolutions resolutions over the water's slope is noise, not a contact (design.md 2.5).
+    constexpr double kRoundingResolutions = 8.0;
+    const double roundingFloor = m_lastWaterSlope * kRoundingResolutions * step.positionResolution;
+    return deviation <= std::max(allowedPoseDeviation(predicted.hydrostatics.waterline_area), roundingFloor) &&
            predicted.hydrostatics.force.allFinite() && predicted.hydrostatics.torque.allFinite() &&
            predicted.dragForce.allFinite() && predicted.dragTorque.allFinite();
 }
