@@ -578,13 +578,18 @@ void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* c
     }
 }
 
-void btBuoyancyWorldPrefetch(const btBuoyancyAction& action) {
+void btBuoyancyWorldPrefetch(const btBuoyancyAction& action, bool referenced) {
     const auto lines = [](const void* p, std::size_t bytes) {
         const char* c = static_cast<const char*>(p);
         for (std::size_t k = 0; k < bytes; k += 64) __builtin_prefetch(c + k);
     };
-    lines(&action, sizeof(btBuoyancyAction));
+    if (!referenced) {
+        lines(&action, sizeof(btBuoyancyAction));
+        return;
+    }
+    // Reads the action's pointers: called once its own lines have arrived (a stage later).
     lines(action.m_body, sizeof(btRigidBody));
+    if (action.m_owner) lines(&action.m_owner->getMeshInComFrame(), sizeof(btTransform));
 }
 
 void btBuoyancyAction::applyPending() {
@@ -821,10 +826,14 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         const std::size_t dragPoints = dragOn ? m_drag->size() : 0;
         if (nodes * nodes < std::max(hydroPoints, dragPoints)) {
             try {
-                m_patch.build(*water, bc.x(), bc.z(), br, time, int(nodes), m_patchCache);
-                if (m_patch.finite()) {
-                    if (nodes * nodes < hydroPoints) patch = &m_patch;
-                    if (nodes * nodes < dragPoints) dragPatch = &m_patch;
+                // Scratch of the calling thread: the patch is built afresh at every exact evaluation and used only
+                // within it (its warm start, m_patchCache, is the body's). A per-body patch (8 KB of cells for 11
+                // nodes) was out of the cache again by the body's next exact evaluation in a large fleet.
+                thread_local buoyancy::WaterPatch patchScratch;
+                patchScratch.build(*water, bc.x(), bc.z(), br, time, int(nodes), m_patchCache);
+                if (patchScratch.finite()) {
+                    if (nodes * nodes < hydroPoints) patch = &patchScratch;
+                    if (nodes * nodes < dragPoints) dragPatch = &patchScratch;
                 }
             } catch (const std::exception&) {
                 patch = dragPatch = nullptr;  // a degenerate footprint: fall back to exact queries

@@ -65,9 +65,10 @@ struct btBuoyancyResult {
 
 /// Internal (btBuoyancyWorld's batch): evaluate `action`'s body for the current substep of its world (dt, s).
 void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* collisionWorld, double dt);
-/// Internal (btBuoyancyWorld's batch): ask the CPU to bring the action's and its body's state into the cache before
-/// the action is evaluated (the batch walks many bodies whose state is no longer cached). Changes nothing.
-void btBuoyancyWorldPrefetch(const btBuoyancyAction& action);
+/// Internal (btBuoyancyWorld's batch): ask the CPU to bring an action's state into the cache before it is evaluated
+/// (the batch walks many bodies whose state is no longer cached): its own object (`referenced` false), or, a stage
+/// later, what it points to (its rigid body, its body's mesh frame). Changes nothing.
+void btBuoyancyWorldPrefetch(const btBuoyancyAction& action, bool referenced);
 
 /// What btBuoyancyAction::setBodyMassFromShape set, and how exactly Bullet's diagonal inertia represents the solid.
 struct btBuoyancyMassResult {
@@ -229,10 +230,7 @@ public:
 private:
     friend class btBuoyancyImmediate;  // steps a body that is in no Bullet world (m_outsideWorld)
     friend void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* collisionWorld, double dt);
-/// Internal (btBuoyancyWorld's batch): ask the CPU to bring the action's and its body's state into the cache before
-/// the action is evaluated (the batch walks many bodies whose state is no longer cached). Changes nothing.
-void btBuoyancyWorldPrefetch(const btBuoyancyAction& action);
-    friend void btBuoyancyWorldPrefetch(const btBuoyancyAction& action);
+    friend void btBuoyancyWorldPrefetch(const btBuoyancyAction& action, bool referenced);
     /// Everything of a substep that reads the body and writes only this action's state: the water, hydrostatics,
     /// drag, the temporal level of detail and the decisions; what it would write into the body is kept for
     /// applyPending. Safe to run for different bodies at once. dt: substep, s (> 0, finite).
@@ -326,8 +324,8 @@ void btBuoyancyWorldPrefetch(const btBuoyancyAction& action);
     btWaterQueryCache m_dragCache;   ///< warm start of the height and velocity queries at the cluster points
     std::vector<double> m_px, m_py, m_pz, m_pux, m_puy, m_puz; ///< velocity probes: world points and velocities
     btWaterQueryCache m_probeCache;  ///< warm start of the velocity queries at the probes
-    /// Fewer wave queries (design.md 2.5): the per-body grid of water heights, and its warm start.
-    buoyancy::WaterPatch m_patch;
+    /// Fewer wave queries (design.md 2.5): the warm start of the per-body grid of water heights (the grid itself is the
+    /// evaluating thread's scratch).
     btWaterQueryCache m_patchCache;
     /// @name Sleeping: Bullet tests the stored velocity, which at rest on the water is +g·dt, not 0 (the kick for
     /// the next substep comes after integration: symplectic Euler, design.md 3), against thresholds that a bobbing

@@ -170,7 +170,9 @@ void btBuoyancyWorld::evaluateBatch(const btCollisionWorld* from, double dt) {
     btBuoyancyAction* const* batch = m_batch.data();
     parallelOver(n, getThreads(), FpState::current(),
                  [batch, from, dt, n](int i) {
-                     if (i + 1 < n) btBuoyancyWorldPrefetch(*batch[i + 1]);
+                     // Two stages ahead: the next action's object, then (its lines arrived) what it points to.
+                     if (i + 2 < n) btBuoyancyWorldPrefetch(*batch[i + 2], false);
+                     if (i + 1 < n) btBuoyancyWorldPrefetch(*batch[i + 1], true);
                      btBuoyancyWorldEvaluate(*batch[i], from, dt);
                  });
 }
