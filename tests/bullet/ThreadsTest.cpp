@@ -4,6 +4,7 @@
 // with actions that write bodies is the documented one; bodies added or removed between steps are picked up; creating
 // an action during the parallel evaluation is refused; the caller's floating-point control state reaches the workers.
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 #include <BulletBuoyancy/bullet/btFloodingAction.h>
@@ -64,6 +65,7 @@ struct FleetOptions {
     bool flooding = false;           ///< a flooding action after every third body's buoyancy action
     bool timeVaryingMass = false;    ///< a time-varying mass action before the buoyancy actions, every fourth body
     Writer thruster = Writer::None;  ///< a thruster on body 5
+    bool deformable = false;         ///< every sixth body a breathing sampled sphere (btBuoyancyDeformable)
     const btWaterSurface* surface = nullptr;  ///< nullptr: the test's Gerstner sea
 };
 
@@ -81,6 +83,9 @@ struct Fleet {
     std::vector<std::unique_ptr<btBuoyancyAction>> actions;
     std::vector<std::unique_ptr<btFloodingAction>> floods;
     std::vector<std::unique_ptr<btTimeVaryingMassAction>> masses;
+    std::vector<std::shared_ptr<btBuoyancyDeformable>> skins;  ///< with the rest vertices of each
+    std::vector<std::vector<Eigen::Vector3d>> restVertices;
+    int frame = 0;
     Thruster thruster;
     std::vector<btActionInterface*> added;
 
@@ -118,8 +123,20 @@ struct Fleet {
                 add(masses.back().get());
             }
         }
+        btBuoyancySettings sampled;
+        sampled.method = btBuoyancyMethod::ExactCoverage;
+        sampled.textureSize = 32;
+        auto breathing = btBuoyancyShape::create(buoyancy::makeSphereMesh(0.6, 16, 8), sampled);
         for (int i = 0; i < o.bodies; ++i) {
-            actions.push_back(std::make_unique<btBuoyancyAction>(*bodies[std::size_t(i)], &water));
+            if (o.deformable && i % 6 == 3) {
+                actions.push_back(std::make_unique<btBuoyancyAction>(bodies[std::size_t(i)]->getRigidBody(), breathing,
+                                                                     &water, sampled));
+                skins.push_back(btBuoyancyDeformable::create(*breathing, sampled));
+                restVertices.push_back(skins.back()->getVertices());
+                actions.back()->setDeformable(skins.back());
+            } else {
+                actions.push_back(std::make_unique<btBuoyancyAction>(*bodies[std::size_t(i)], &water));
+            }
             add(actions.back().get());
             if (o.thruster == Writer::AfterOwn && i == 5) add(&thruster);
             if (o.thruster == Writer::BetweenOthers && i == 2) add(&thruster);
@@ -144,7 +161,16 @@ struct Fleet {
         for (auto& b : bodies) world.removeRigidBody(b->getRigidBody());
     }
     void run(int frames) {
-        for (int f = 0; f < frames; ++f) world.stepSimulation(btScalar(1.0 / 60), 4, btScalar(1.0 / 240));
+        for (int f = 0; f < frames; ++f, ++frame) {
+            // The user animates the deformable bodies between steps: each breathes by ±8 % of its radius.
+            for (std::size_t k = 0; k < skins.size(); ++k) {
+                const double scale = 1.0 + 0.08 * std::sin(0.2 * frame + double(k));
+                std::vector<Eigen::Vector3d> v = restVertices[k];
+                for (Eigen::Vector3d& p : v) p *= scale;
+                skins[k]->setVertices(v);
+            }
+            world.stepSimulation(btScalar(1.0 / 60), 4, btScalar(1.0 / 240));
+        }
     }
     /// Every body's state and every action's last result, as bytes.
     std::vector<unsigned char> fingerprint() const {
@@ -252,6 +278,33 @@ TEST_CASE("threads: flooding and time-varying mass give the sequential order's r
     Fleet g(o);
     g.run(1);
     CHECK(g.water.getLastFloodingBatchSize() == 8);
+}
+
+TEST_CASE("threads: deformable bodies re-baked on the worker threads give the sequential order's results",
+          "[bullet][threads]") {
+    // setVertices between steps only stores the vertices; the samples are re-baked when the body is evaluated: in the
+    // batch, on the worker threads. Batched on 1 and 3 threads == each action at its own turn.
+    FleetOptions o;
+    o.deformable = true;
+    o.threads = 3;
+    const int frames = 60;
+    const auto batched = runFleet(o, frames);
+    o.threads = 1;
+    const auto batchedOne = runFleet(o, frames);
+    o.batching = false;
+    const auto sequential = runFleet(o, frames);
+    CHECK(batched == sequential);
+    CHECK(batchedOne == sequential);
+    // The breathing is part of what is compared: a deformable body's submerged volume follows its size. Its samples
+    // enclose the scaled mesh's volume (the re-bake happened): the rest mesh's volume × scale³.
+    o.batching = true;
+    o.threads = 3;
+    Fleet f(o);
+    f.run(7);
+    REQUIRE(!f.skins.empty());
+    const double scale = 1.0 + 0.08 * std::sin(0.2 * 6 + 0.0);  // the last frame's (frame 6, skin 0)
+    const double rest = f.actions[3]->getShape()->getVolume();
+    CHECK(f.skins[0]->getVolume() == Approx(rest * scale * scale * scale).epsilon(1e-6));
 }
 
 TEST_CASE("threads: a flooding action added to the Bullet world twice flows at each of its turns", "[bullet][threads]") {

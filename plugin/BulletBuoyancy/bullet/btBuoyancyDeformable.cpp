@@ -31,10 +31,27 @@ std::shared_ptr<btBuoyancyDeformable> btBuoyancyDeformable::create(const btBuoya
 }
 
 void btBuoyancyDeformable::setVertices(const std::vector<Eigen::Vector3d>& vertices) {
-    buoyancy::rebakeSamples(m_map, vertices, m_samples);  // checks count and finiteness before writing
+    // The checks of rebakeSamples, now, so that a bad call changes nothing; the re-bake itself waits for getSamples.
+    if (vertices.size() != m_map.vertexCount)
+        throw std::invalid_argument("rebakeSamples: " + std::to_string(vertices.size()) + " vertices given, the mesh has " +
+                                    std::to_string(m_map.vertexCount));
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+        if (!vertices[v].allFinite())
+            throw std::invalid_argument("rebakeSamples: vertex " + std::to_string(v) + " is not finite");
     m_vertices = vertices;
     updateBounds();
     ++m_version;
+}
+
+const buoyancy::SurfaceSamples& btBuoyancyDeformable::getSamples() const {
+    if (m_bakedVersion.load(std::memory_order_acquire) != m_version) {
+        std::lock_guard<std::mutex> lock(m_bakeMutex);
+        if (m_bakedVersion.load(std::memory_order_relaxed) != m_version) {
+            buoyancy::rebakeSamples(m_map, m_vertices, m_samples);
+            m_bakedVersion.store(m_version, std::memory_order_release);
+        }
+    }
+    return m_samples;
 }
 
 void btBuoyancyDeformable::updateBounds() {
@@ -57,7 +74,8 @@ void btBuoyancyDeformable::setVertices(const std::vector<btVector3>& vertices) {
 }
 
 double btBuoyancyDeformable::getVolume() const {
+    const buoyancy::SurfaceSamples& samples = getSamples();
     double v = 0;
-    for (std::size_t i = 0; i < m_samples.size(); ++i) v += m_samples.ay[i] * m_samples.py[i];
+    for (std::size_t i = 0; i < samples.size(); ++i) v += samples.ay[i] * samples.py[i];
     return v;
 }

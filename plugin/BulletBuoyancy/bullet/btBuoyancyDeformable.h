@@ -17,8 +17,10 @@
 #include <LinearMath/btVector3.h>
 
 #include <Eigen/Core>
+#include <atomic>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 class btBuoyancyShape;
@@ -36,16 +38,18 @@ public:
     static std::shared_ptr<btBuoyancyDeformable> create(const btBuoyancyShape& shape, const btBuoyancySettings& settings);
 
     /// New vertex positions, mesh frame, m (#V, the mesh's vertex order; welded mesh of the shape).
-    /// Re-bakes the CPU samples and bumps getVersion(). @throws std::invalid_argument for a wrong count or a
-    /// non-finite position (nothing changed)
+    /// Bumps getVersion(); the CPU samples are re-baked when next asked for (getSamples, getVolume), so that a
+    /// world evaluating its bodies in parallel re-bakes them on its threads. @throws std::invalid_argument for a wrong
+    /// count or a non-finite position (nothing changed)
     void setVertices(const std::vector<Eigen::Vector3d>& vertices);
     /// Same, from Bullet vectors.
     void setVertices(const std::vector<btVector3>& vertices);
 
     /// Current vertex positions, mesh frame, m.
     const std::vector<Eigen::Vector3d>& getVertices() const { return m_vertices; }
-    /// Current samples (re-baked at the last setVertices), mesh frame.
-    const buoyancy::SurfaceSamples& getSamples() const { return m_samples; }
+    /// Current samples of the current vertices, mesh frame (re-baked here, once, after a setVertices; concurrent calls
+    /// wait for that one re-bake). Do not call setVertices while another thread reads them.
+    const buoyancy::SurfaceSamples& getSamples() const;
     /// The fixed piece map.
     const buoyancy::RebakeMap& getMap() const { return m_map; }
     /// Incremented by every setVertices (a device backend re-bakes its copy when it changes).
@@ -61,7 +65,9 @@ private:
     btBuoyancyDeformable() = default;
     buoyancy::RebakeMap m_map;
     std::vector<Eigen::Vector3d> m_vertices;
-    buoyancy::SurfaceSamples m_samples;
+    mutable buoyancy::SurfaceSamples m_samples;        ///< baked from m_vertices at version m_bakedVersion
+    mutable std::atomic<std::uint64_t> m_bakedVersion{0};
+    mutable std::mutex m_bakeMutex;                    ///< taken only to re-bake (once per setVertices)
     std::uint64_t m_version = 0;
     Eigen::Vector3d m_boundsCentre = Eigen::Vector3d::Zero();
     double m_boundsRadius = 0;
