@@ -273,11 +273,19 @@ TEST_CASE("threads: flooding and time-varying mass give the sequential order's r
     for (const auto& fl : f.floods) water += fl->getWaterVolume();
     CHECK(water > 0.01);
     CHECK(f.water.getLastFloodingBatchSize() == 0);
+    CHECK(f.water.getLastTimeVaryingMassBatchSize() == 0);
     o.batching = true;
     o.threads = 3;
     Fleet g(o);
     g.run(1);
     CHECK(g.water.getLastFloodingBatchSize() == 8);
+    // The six time-varying mass actions (every fourth body's) checked their maps in one batch, and the maps changed
+    // (every 0.05 s) and were recomputed: the recompute is part of what is compared above.
+    CHECK(g.water.getLastTimeVaryingMassBatchSize() == 6);
+    g.run(frames);
+    long long recomputes = 0;
+    for (const auto& m : g.masses) recomputes += m->getRecomputeCount();
+    CHECK(recomputes >= 6 * 20);
 }
 
 TEST_CASE("threads: deformable bodies re-baked on the worker threads give the sequential order's results",

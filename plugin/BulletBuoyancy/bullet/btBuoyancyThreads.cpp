@@ -5,6 +5,7 @@
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btFloodingAction.h>
+#include <BulletBuoyancy/bullet/btTimeVaryingMassAction.h>
 
 #include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 #include <LinearMath/btThreads.h>
@@ -111,6 +112,26 @@ void parallelOver(int n, int threads, unsigned csr, const Item& item) {
     for (int i = 0; i < n; ++i) item(i);
 }
 
+/// The registered actions of one kind (`registered`) that are in the Bullet world's action array, in its order, into
+/// `members`; one added to the array twice is left out (it runs at each of its turns, as it would unbatched). Rebuilt
+/// only when the array differs from `seen` (the array it was built from) or `dirty` (registrations changed).
+template <class Action>
+void refreshMembers(const btAlignedObjectArray<btActionInterface*>& actions, const std::vector<Action*>& registered,
+                    bool& dirty, std::vector<const btActionInterface*>& seen, std::vector<Action*>& members) {
+    const std::size_t count = std::size_t(std::max(actions.size(), 0));
+    const btActionInterface* const* now = count > 0 ? &actions[0] : nullptr;
+    if (!dirty && seen.size() == count && std::equal(seen.begin(), seen.end(), now)) return;
+    seen.assign(now, now + count);
+    members.clear();
+    for (const btActionInterface* a : seen) {
+        const auto mine = std::find(registered.begin(), registered.end(), a);
+        if (mine == registered.end()) continue;
+        if (std::count(seen.begin(), seen.end(), a) != 1) continue;
+        members.push_back(*mine);
+    }
+    dirty = false;
+}
+
 }  // namespace
 
 void btBuoyancyWorld::setThreads(int n) {
@@ -185,23 +206,8 @@ void btBuoyancyWorld::evaluateFloodingBatch(const btCollisionWorld* from, double
         m_lastFloodingBatchSize = 0;
         return;
     }
-    const btAlignedObjectArray<btActionInterface*>& actions = WorldActions::of(*world);
-    const std::size_t count = std::size_t(std::max(actions.size(), 0));
-    const btActionInterface* const* seen = count > 0 ? &actions[0] : nullptr;
-    if (m_floodingBatchDirty || m_seenFloodingWorldActions.size() != count ||
-        !std::equal(m_seenFloodingWorldActions.begin(), m_seenFloodingWorldActions.end(), seen)) {
-        // The registered flooding actions in the Bullet world's order; one added to it twice flows at each of its
-        // turns, as it would unbatched, so it is left out.
-        m_seenFloodingWorldActions.assign(seen, seen + count);
-        m_floodingBatch.clear();
-        for (const btActionInterface* a : m_seenFloodingWorldActions) {
-            const auto mine = std::find(m_floodingActions.begin(), m_floodingActions.end(), a);
-            if (mine == m_floodingActions.end()) continue;
-            if (std::count(m_seenFloodingWorldActions.begin(), m_seenFloodingWorldActions.end(), a) != 1) continue;
-            m_floodingBatch.push_back(*mine);
-        }
-        m_floodingBatchDirty = false;
-    }
+    refreshMembers(WorldActions::of(*world), m_floodingActions, m_floodingBatchDirty, m_seenFloodingWorldActions,
+                   m_floodingBatch);
     // Only a member starts the batch (the first one called in the substep): one left out flows on its own.
     if (std::find(m_floodingBatch.begin(), m_floodingBatch.end(), caller) == m_floodingBatch.end()) return;
     const int n = int(m_floodingBatch.size());
@@ -214,4 +220,34 @@ void btBuoyancyWorld::evaluateFloodingBatch(const btCollisionWorld* from, double
     // Each flow writes only its own action's water graph and scratch (the body is written at the action's turn).
     btFloodingAction* const* batch = m_floodingBatch.data();
     parallelOver(n, getThreads(), FpState::current(), [batch, dt](int i) { batch[i]->flowForBatch(dt); });
+}
+
+void btBuoyancyWorld::evaluateTimeVaryingMassBatch(const btCollisionWorld* from, const btTimeVaryingMassAction* caller) {
+    // Off, or without a discrete dynamics world at hand (actions stepped by hand): each action recomputes at its turn.
+    const auto* world = m_batching ? dynamic_cast<const btDiscreteDynamicsWorld*>(from) : nullptr;
+    if (!world || m_massActions.empty()) {
+        m_lastMassBatchSize = 0;
+        return;
+    }
+    refreshMembers(WorldActions::of(*world), m_massActions, m_massBatchDirty, m_seenMassWorldActions, m_massBatch);
+    // Only a member starts the batch (the first one called in the substep): one left out recomputes on its own.
+    if (std::find(m_massBatch.begin(), m_massBatch.end(), caller) == m_massBatch.end()) return;
+    m_lastMassBatchSize = m_massBatch.size();
+    // Which maps changed: decided here, on the calling thread, in the world's order (the maps' version functions are
+    // called where they would be unbatched); only the changed ones are recomputed across the threads.
+    const double time = getTime();
+    m_massRecomputes.clear();
+    for (btTimeVaryingMassAction* a : m_massBatch)
+        if (a->prepareForBatch(time)) m_massRecomputes.push_back(a);
+    const int n = int(m_massRecomputes.size());
+    if (n == 0) return;
+    struct InBatch {
+        std::atomic<bool>& flag;
+        explicit InBatch(std::atomic<bool>& f) : flag(f) { flag.store(true); }
+        ~InBatch() { flag.store(false); }
+    } inBatch(m_inBatch);
+    // Each computation reads its body's shape and map and writes only its own action's pending result (the body is
+    // written at the action's turn).
+    btTimeVaryingMassAction* const* batch = m_massRecomputes.data();
+    parallelOver(n, getThreads(), FpState::current(), [batch](int i) { batch[i]->computeForBatch(); });
 }

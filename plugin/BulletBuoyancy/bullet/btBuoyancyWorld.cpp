@@ -279,6 +279,28 @@ void btBuoyancyWorld::registerFloodingAction(btFloodingAction* action) {
     m_floodingActions.push_back(action);
 }
 
+void btBuoyancyWorld::registerTimeVaryingMassAction(btTimeVaryingMassAction* action) {
+    if (m_dispatching || m_inBatch.load())
+        throw std::logic_error("btTimeVaryingMassAction: created while its btBuoyancyWorld steps (inside "
+                               "stepSimulation); create and destroy actions between steps");
+    m_massBatchDirty = true;
+    m_massActions.push_back(action);
+}
+
+void btBuoyancyWorld::unregisterTimeVaryingMassAction(btTimeVaryingMassAction* action) {
+    if (m_inBatch.load()) {
+        // Called from an action's destructor (noexcept): refused with a message, never a data race.
+        std::fprintf(stderr, "btTimeVaryingMassAction: destroyed while its btBuoyancyWorld recomputes a substep's mass "
+                             "properties in parallel; create and destroy actions between steps\n");
+        std::abort();
+    }
+    m_massBatchDirty = true;
+    m_massBatch.erase(std::remove(m_massBatch.begin(), m_massBatch.end(), action), m_massBatch.end());
+    m_massRecomputes.erase(std::remove(m_massRecomputes.begin(), m_massRecomputes.end(), action),
+                           m_massRecomputes.end());
+    m_massActions.erase(std::remove(m_massActions.begin(), m_massActions.end(), action), m_massActions.end());
+}
+
 void btBuoyancyWorld::unregisterFloodingAction(btFloodingAction* action) {
     if (m_inBatch.load()) {
         // Called from an action's destructor (noexcept): refused with a message, never a data race.

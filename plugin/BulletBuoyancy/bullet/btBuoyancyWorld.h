@@ -30,6 +30,7 @@
 class btWaterSurface;
 class btBuoyancyAction;
 class btFloodingAction;
+class btTimeVaryingMassAction;
 class btBuoyancyDeviceBackend;
 class btBuoyancyDeviceBody;
 class btActionInterface;
@@ -235,6 +236,10 @@ public:
     /// Flooding actions (btFloodingAction) whose water moved in the last flooding batch (0 when they flowed per
     /// action: batching off, or no discrete dynamics world stepping them).
     int getLastFloodingBatchSize() const { return int(m_lastFloodingBatchSize); }
+    /// Time-varying mass actions (btTimeVaryingMassAction) whose maps were checked in the last mass batch (their
+    /// changed ones recomputed across the threads; 0 when they ran at their own turns: batching off, or not in a
+    /// discrete dynamics world).
+    int getLastTimeVaryingMassBatchSize() const { return int(m_lastMassBatchSize); }
     ///@}
 
     ///@name Events and queries for game logic (btBuoyancyEvents.h, docs/integration.md "Events and queries")
@@ -291,6 +296,13 @@ public:
     /// registered flooding action that is in `from`'s action array (once each) for a substep of dt seconds, across
     /// the threads.
     void evaluateFloodingBatch(const btCollisionWorld* from, double dt, const btFloodingAction* caller);
+    /// Internal: time-varying mass actions register and unregister themselves (evaluateTimeVaryingMassBatch).
+    void registerTimeVaryingMassAction(btTimeVaryingMassAction* action);
+    void unregisterTimeVaryingMassAction(btTimeVaryingMassAction* action);
+    /// Internal (btTimeVaryingMassAction::updateAction): with batching on and `caller` one of them, check the map of
+    /// every registered time-varying mass action that is in `from`'s action array (once each) at the world's time,
+    /// and recompute the changed ones' mass properties across the threads; each applies its own at its turn.
+    void evaluateTimeVaryingMassBatch(const btCollisionWorld* from, const btTimeVaryingMassAction* caller);
 
 private:
     friend class btBuoyancyImmediate;  // sets the gravity vector of its private context
@@ -345,6 +357,14 @@ private:
     /// Registered flooding actions in the Bullet world (each there once), in its order.
     std::vector<btFloodingAction*> m_floodingBatch;
     std::size_t m_lastFloodingBatchSize = 0;  ///< flooding actions in the last flooding batch
+    std::vector<btTimeVaryingMassAction*> m_massActions;  ///< registered time-varying mass actions
+    bool m_massBatchDirty = true;  ///< the registered time-varying mass actions changed since m_massBatch was built
+    /// The Bullet world's action array m_massBatch was built from.
+    std::vector<const btActionInterface*> m_seenMassWorldActions;
+    /// Registered time-varying mass actions in the Bullet world (each there once), in its order.
+    std::vector<btTimeVaryingMassAction*> m_massBatch;
+    std::vector<btTimeVaryingMassAction*> m_massRecomputes;  ///< the members whose map changed in the last batch
+    std::size_t m_lastMassBatchSize = 0;  ///< time-varying mass actions in the last mass batch
     std::size_t m_lastBatchSize = 0;  ///< bodies evaluated in the last batch
     ///@}
 };

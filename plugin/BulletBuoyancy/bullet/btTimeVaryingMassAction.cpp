@@ -20,10 +20,12 @@ btTimeVaryingMassAction::btTimeVaryingMassAction(btBuoyantBody& body, btBuoyancy
     m_settings.fixed = false;
     m_settings.massModel = btBuoyantMassModel::DensityMap;
     apply(m_world->getTime());
+    m_world->registerTimeVaryingMassAction(this);
 }
 
-void btTimeVaryingMassAction::apply(double t) {
-    const std::int64_t version = m_versionFn(t);
+btTimeVaryingMassAction::~btTimeVaryingMassAction() { m_world->unregisterTimeVaryingMassAction(this); }
+
+buoyancy::MassProperties btTimeVaryingMassAction::compute(double t) const {
     btBuoyantBodySettings s = m_settings;
     const DensityFn& fn = m_densityFn;
     s.arealDensity = [&fn, t](const Eigen::Vector3d& p) { return fn(t, p); };
@@ -31,6 +33,10 @@ void btTimeVaryingMassAction::apply(double t) {
     const buoyancy::MassProperties mp = btBuoyantBodyMassProperties(*m_body->getShape(), s);
     if (!(mp.mass > 0) || !std::isfinite(mp.mass) || !mp.centre.allFinite() || !mp.inertia.allFinite())
         throw std::invalid_argument("density map: gives no positive, finite mass at t = " + std::to_string(t));
+    return mp;
+}
+
+void btTimeVaryingMassAction::commit(const buoyancy::MassProperties& mp, std::int64_t version) {
     if (m_flooding) {
         m_flooding->setDryMassProperties(mp);
         m_flooding->updateBodyMassProperties();
@@ -41,14 +47,60 @@ void btTimeVaryingMassAction::apply(double t) {
     ++m_recomputes;
 }
 
-void btTimeVaryingMassAction::updateAction(btCollisionWorld*, btScalar) {
-    btRigidBody* rb = m_body->getRigidBody();
-    if (!rb->getBroadphaseHandle() || rb->getInvMass() == btScalar(0)) return;
+void btTimeVaryingMassAction::apply(double t) {
+    const std::int64_t version = m_versionFn(t);
+    commit(compute(t), version);
+}
+
+bool btTimeVaryingMassAction::active() const {
+    const btRigidBody* rb = m_body->getRigidBody();
+    return rb->getBroadphaseHandle() && rb->getInvMass() != btScalar(0);
+}
+
+bool btTimeVaryingMassAction::prepareForBatch(double t) {
+    m_batched = true;
+    m_batchTime = t;
+    m_batchError = nullptr;
+    m_batchRecompute = false;
+    if (!active() || !std::isfinite(t)) return false;
+    m_batchVersion = m_versionFn(t);
+    m_batchRecompute = m_batchVersion != m_version;
+    return m_batchRecompute;
+}
+
+void btTimeVaryingMassAction::computeForBatch() {
+    try {
+        m_batchResult = compute(m_batchTime);
+    } catch (...) {
+        m_batchError = std::current_exception();  // handled at the action's turn, as an unbatched recompute would be
+    }
+}
+
+void btTimeVaryingMassAction::updateAction(btCollisionWorld* collisionWorld, btScalar) {
+    // The world's batch checks every time-varying mass action's map at the first one's turn and recomputes the
+    // changed ones across the threads; an action outside it (batching off, not in a discrete dynamics world, stepped
+    // by hand), or one whose world time moved since (another action advanced the clock), does its own work here.
+    if (!m_batched) m_world->evaluateTimeVaryingMassBatch(collisionWorld, this);
+    const bool batched = m_batched;
+    m_batched = false;
+    if (!active()) return;
     const double t = m_world->getTime();
+    if (batched && m_batchTime == t) {
+        if (!m_batchRecompute) return;
+        try {
+            if (m_batchError) std::rethrow_exception(m_batchError);
+            commit(m_batchResult, m_batchVersion);
+            m_body->getRigidBody()->activate();
+        } catch (const std::invalid_argument&) {
+            // A bad map at run time leaves the body as it was (never NaN into Bullet); retried at the next version.
+            m_version = m_batchVersion;
+        }
+        return;
+    }
     if (!std::isfinite(t) || m_versionFn(t) == m_version) return;
     try {
         apply(t);
-        rb->activate();
+        m_body->getRigidBody()->activate();
     } catch (const std::invalid_argument&) {
         // A bad map at run time leaves the body as it was (never NaN into Bullet); retried at the next version.
         m_version = m_versionFn(t);

@@ -8,6 +8,11 @@
 ///
 /// The map says when it changes through a version number: version(t) is called every substep and the mass
 /// properties are recomputed only when it differs from the last one (e.g. floor(t / interval)).
+///
+/// Threads: with the world's batching on (btBuoyancyWorld::setBatching), the first time-varying mass action called in a
+/// substep checks every one's version (on the calling thread, in the world's action order) and recomputes the changed
+/// maps across the world's threads: the density function may then be called from several threads at once, for
+/// different bodies (it must not write shared state). Each action applies its own result at its turn.
 
 #include <BulletBuoyancy/bullet/btBuoyantBodyBuilder.h>
 
@@ -16,6 +21,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <vector>
 
@@ -40,7 +46,7 @@ public:
     /// @throws std::invalid_argument for a fixed body, a null world or function, or a bad map (body unchanged)
     btTimeVaryingMassAction(btBuoyantBody& body, btBuoyancyWorld* world, btBuoyantBodySettings settings,
                             VersionFn version, DensityFn density, btFloodingAction* flooding = nullptr);
-    ~btTimeVaryingMassAction() override = default;
+    ~btTimeVaryingMassAction() override;
     btTimeVaryingMassAction(const btTimeVaryingMassAction&) = delete;
     btTimeVaryingMassAction& operator=(const btTimeVaryingMassAction&) = delete;
 
@@ -71,7 +77,19 @@ public:
     void restoreState(const std::vector<unsigned char>& blob) { restoreState(blob.data(), blob.size()); }
     ///@}
 
+    /// Internal (btBuoyancyWorld's batch, calling thread): at the world's time t (s), true when this action's map
+    /// changed and its mass properties are to be recomputed by computeForBatch; the result waits for updateAction.
+    bool prepareForBatch(double t);
+    /// Internal (btBuoyancyWorld's batch, any thread): recompute the mass properties prepareForBatch asked for.
+    void computeForBatch();
+
 private:
+    /// The mass properties of the map at time t. @throws std::invalid_argument for a bad map
+    buoyancy::MassProperties compute(double t) const;
+    /// Push `mp` into the body (or the flooding action) as version `version`.
+    void commit(const buoyancy::MassProperties& mp, std::int64_t version);
+    /// Whether the body takes mass changes now (in a world, not fixed).
+    bool active() const;
     btBuoyantBody* m_body;
     btBuoyancyWorld* m_world;
     btBuoyantBodySettings m_settings;
@@ -80,4 +98,13 @@ private:
     btFloodingAction* m_flooding;
     std::int64_t m_version = 0;
     long long m_recomputes = 0;
+    /// @name The batch's result for this substep (prepareForBatch, computeForBatch), applied at updateAction
+    ///@{
+    bool m_batched = false;                 ///< prepared by the batch at m_batchTime
+    double m_batchTime = 0;                 ///< the world's time the batch checked the map at, s
+    bool m_batchRecompute = false;          ///< the map changed: m_batchResult or m_batchError holds the recompute
+    std::int64_t m_batchVersion = 0;        ///< the map's version at m_batchTime
+    buoyancy::MassProperties m_batchResult; ///< the recomputed mass properties (valid without m_batchError)
+    std::exception_ptr m_batchError;        ///< what the recompute threw, rethrown (or absorbed) at the action's turn
+    ///@}
 };
