@@ -14,6 +14,15 @@
 #include <stdexcept>
 #include <string>
 
+#ifdef BULLET_BUOYANCY_HAS_TBB
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
+
+#include <memory>
+#include <thread>
+#endif
 #ifdef BULLET_BUOYANCY_HAS_OPENMP
 #include <omp.h>
 #endif
@@ -93,6 +102,27 @@ void parallelOver(int n, int threads, unsigned csr, const Item& item) {
         scheduler->parallelFor(0, n, std::max(1, std::min(16, n / (8 * scheduler->getNumThreads()))), body);
         return;
     }
+#ifdef BULLET_BUOYANCY_HAS_TBB
+    // oneTBB (BULLET_BUOYANCY_TBB): the same chunks on a task arena of `threads` threads, kept between substeps.
+    threads = std::min(threads, n);
+    if (threads > 1 && n >= 4) {
+        thread_local std::unique_ptr<tbb::task_arena> arena;
+        if (!arena || arena->max_concurrency() != threads) arena = std::make_unique<tbb::task_arena>(threads);
+        const int chunk = std::max(1, std::min(16, n / (8 * threads)));
+        arena->execute([&] {
+            tbb::parallel_for(
+                tbb::blocked_range<int>(0, n, std::size_t(chunk)),
+                [&](const tbb::blocked_range<int>& r) {
+                    FpState fp(csr);
+                    for (int i = r.begin(); i < r.end(); ++i) item(i);
+                },
+                tbb::simple_partitioner());
+        });
+        return;
+    }
+    for (int i = 0; i < n; ++i) item(i);
+    return;
+#endif
 #ifdef BULLET_BUOYANCY_HAS_OPENMP
     threads = std::min(threads, n);
     if (threads > 1 && n >= 4) {
@@ -142,6 +172,9 @@ void btBuoyancyWorld::setThreads(int n) {
 
 int btBuoyancyWorld::getThreads() const {
     if (btITaskScheduler* scheduler = bulletScheduler()) return scheduler->getNumThreads();
+#ifdef BULLET_BUOYANCY_HAS_TBB
+    return m_threads > 0 ? m_threads : std::max(1, int(std::thread::hardware_concurrency()));
+#endif
 #ifdef BULLET_BUOYANCY_HAS_OPENMP
     return m_threads > 0 ? m_threads : std::max(1, omp_get_num_procs());
 #else
