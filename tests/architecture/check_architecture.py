@@ -6,8 +6,8 @@
 
 Rules (docs/design.md, "Folders and layers"):
   1. A core folder of plugin/BulletBuoyancy/ includes nothing of Bullet (its headers, nor the Bullet layer).
-  2. A core folder includes only core folders before it in the data flow (CORE_ORDER); the Bullet layer may include
-     any core folder.
+  2. A core folder includes only core folders before it in the data flow (CORE_ORDER: state, geometry, mesh, water,
+     atlas, bake, integrals, temporal, graph); the Bullet layer may include any core folder.
   3. Every include of one of the library's headers, anywhere in the repository (library, examples, tests, fuzz
      targets), is written <BulletBuoyancy/folder/File.h>.
   4. No two folders include each other, directly or around a longer circle (library and examples alike).
@@ -20,8 +20,9 @@ import re
 import sys
 import tempfile
 
-# The core, in the order of the data flow: a folder may include itself and the folders before it.
-CORE_ORDER = ['geometry', 'mesh', 'water', 'atlas', 'bake', 'integrals', 'graph']
+# The core, in the order of the data flow: a folder may include itself and the folders before it. `state` (the
+# saved-state byte format) comes first: every later stage may save and restore through it.
+CORE_ORDER = ['state', 'geometry', 'mesh', 'water', 'atlas', 'bake', 'integrals', 'temporal', 'graph']
 # The Bullet layer: every file that includes Bullet lives here.
 BULLET_LAYER = 'bullet'
 LIBRARY_ROOT = os.path.join('plugin', 'BulletBuoyancy')
@@ -201,6 +202,14 @@ def self_test():
                                            'the core (integrals/) includes the Bullet layer'),
         'later stage': ({'plugin/BulletBuoyancy/mesh/Bad.cpp': '#include <BulletBuoyancy/integrals/Sum.h>\n'},
                         'mesh/ includes integrals/, a later stage'),
+        'integrals includes temporal': ({'plugin/BulletBuoyancy/temporal/History.h':
+                                         '#include <BulletBuoyancy/integrals/Sum.h>\n',
+                                         'plugin/BulletBuoyancy/integrals/Bad.cpp':
+                                         '#include <BulletBuoyancy/temporal/History.h>\n'},
+                                        'integrals/ includes temporal/, a later stage'),
+        'state includes a stage': ({'plugin/BulletBuoyancy/state/Bad.cpp':
+                                    '#include <BulletBuoyancy/mesh/TriangleMesh.h>\n'},
+                                   'state/ includes mesh/, a later stage'),
         'device backend includes the action': ({'plugin/BulletBuoyancy/bullet/btBuoyancyAction.h': '#pragma once\n',
                                                 'plugin/BulletBuoyancy/bullet/opencl/Bad.cpp':
                                                 '#include <BulletBuoyancy/bullet/btBuoyancyAction.h>\n'},

@@ -468,6 +468,7 @@ TEST_CASE("save and restore: bad blobs throw a clear error and change nothing", 
         std::vector<unsigned char> bad = blob;
         bad[6] = sizeof(btScalar) == 8 ? 4 : 8;
         CHECK_THROWS_WITH(action.restoreState(bad), Contains("precision"));
+        CHECK_THROWS_WITH(action.restoreState(bad), Contains("(btScalar of " + std::to_string(bad[6]) + " bytes)"));
     }
     SECTION("another kind of blob") {
         CHECK_THROWS_WITH(action.restoreState(world), Contains("btBuoyancyWorld state") && Contains("expected a btBuoyancyAction"));
@@ -729,4 +730,22 @@ TEST_CASE("save and restore: a btMultiBody chain in waves runs on bit-identicall
     corrupt[corrupt.size() / 2] ^= 0x40;
     CHECK_THROWS_WITH(scene.action->restoreState(corrupt), Contains("checksum"));
     CHECK(scene.action->saveState() == current);
+}
+
+TEST_CASE("btBuoyancyStateWriter writes the core's format with this build's btScalar size as the precision",
+          "[bullet][state]") {
+    btBuoyancyStateWriter layer(btBuoyancyStateKind::Flooding);
+    buoyancy::StateWriter core(std::uint8_t(btBuoyancyStateKind::Flooding), std::uint8_t(sizeof(btScalar)));
+    for (buoyancy::StateWriter* out : {static_cast<buoyancy::StateWriter*>(&layer), &core}) {
+        out->u32(3);
+        out->f64(0.25);
+    }
+    const std::vector<unsigned char> blob = layer.bytes();
+    CHECK(blob == core.bytes());
+    CHECK(blob[6] == sizeof(btScalar));
+    CHECK(blob[7] == std::uint8_t(btBuoyancyStateKind::Flooding));
+    btBuoyancyStateReader in(blob.data(), blob.size(), btBuoyancyStateKind::Flooding, "test");
+    CHECK(in.u32("count") == 3);
+    CHECK(in.f64("value") == 0.25);
+    CHECK_NOTHROW(in.finish());
 }

@@ -14,11 +14,12 @@
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
-#include <BulletBuoyancy/bullet/btTemporalLevelOfDetail.h>
+#include <BulletBuoyancy/bullet/btTemporalLevelOfDetail.h>  // the older bt names of the controller, for users
 #include <BulletBuoyancy/bullet/btMarineHydrodynamics.h>
 #include <BulletBuoyancy/integrals/DragClusters.h>
 #include <BulletBuoyancy/integrals/Hydrostatics.h>
 #include <BulletBuoyancy/integrals/WaterPatch.h>
+#include <BulletBuoyancy/temporal/TemporalLevelOfDetail.h>
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <BulletDynamics/Dynamics/btActionInterface.h>
@@ -57,7 +58,7 @@ struct btBuoyancyResult {
     btVector3 angularImpulse = btVector3(0, 0, 0);
     bool applied = false;                       ///< false when nothing was applied (dry, asleep, rejected)
     /// The hydrostatic fields were predicted from earlier exact evaluations, not evaluated at this substep
-    /// (btBuoyancySettings::hydrostaticsInterval > 1; btHydrostaticsHistory).
+    /// (btBuoyancySettings::hydrostaticsInterval > 1; buoyancy::HydrostaticsHistory).
     bool predicted = false;
     /// Ok, or why no buoyancy was computed although the body may be in the water (btBuoyancyStatusMessage).
     btBuoyancyStatus status = btBuoyancyStatus::Ok;
@@ -173,7 +174,7 @@ public:
 
     ///@name Save and restore (btBuoyancyState.h, docs/integration.md "Save and restore")
     /// The body's buoyancy state as a versioned blob of bytes: everything this action carries from one substep to the
-    /// next — the temporal level of detail (btTemporalLevelOfDetail: its records, interval, check and cool-down
+    /// next — the temporal level of detail (TemporalLevelOfDetail: its records, interval, check and cool-down
     /// counters), the water queries' warm starts, the drag's kept water heights and velocities, the linear damping's
     /// share, the sleep decision's last centre of mass and the body's own sleeping thresholds, the water events'
     /// states (in the water, fully submerged, which water body), the water body chosen, the rejected-substep count and
@@ -305,8 +306,8 @@ private:
     bool m_needsPrime = true;
     /// @name Temporal level of detail (settings.hydrostaticsInterval)
     ///@{
-    /// The controller: records, interval, checks (btTemporalLevelOfDetail.h).
-    btTemporalLevelOfDetail m_lod;
+    /// The controller: records, interval, checks (temporal/TemporalLevelOfDetail.h).
+    buoyancy::TemporalLevelOfDetail m_lod;
     Eigen::Vector3d m_lastMeanWaterVelocity = Eigen::Vector3d::Zero(); ///< of the last computed drag, m/s
     double m_linearDamping = 0;     ///< this substep's linear damping coefficient b (linearDampingNow), m/s
     /// Share of the last computed drag's power that was linear damping (0..1): how the implicit drag solve splits an

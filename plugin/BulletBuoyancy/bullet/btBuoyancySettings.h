@@ -112,11 +112,11 @@ struct btBuoyancySettings {
     /// A patch with at least as many nodes as the points it would stand for (the mesh's vertices or the samples, plus
     /// the drag clusters) is not built: those points are then queried exactly (cheaper, and exact).
     double waterPatchNodesPerWavelength = 16.0;
-    /// Temporal level of detail (btHydrostaticsHistory): evaluate the hydrostatics and drag exactly
+    /// Temporal level of detail (buoyancy::TemporalLevelOfDetail): evaluate the hydrostatics and drag exactly
     /// every K-th substep and predict them in between by extrapolating the last four exact evaluations in time
     /// (a cubic), moved to the body's actual pose through the linear hydrostatic stiffness (heave through the
     /// waterline area; roll and pitch through the waterplane's moments, which the exact-mesh methods compute:
-    /// btHydrostaticStiffnessCorrection), so that only what the waves drive is extrapolated and a bobbing or rolling
+    /// hydrostaticStiffnessCorrection), so that only what the waves drive is extrapolated and a bobbing or rolling
     /// body keeps its energy. A body predicts only while its pose and velocity stay within hydrostaticsReuseTolerance
     /// of the ones extrapolated the same way (a contact or a teleport makes it evaluate exactly), while its submerged
     /// volume is not about to saturate (a wave overrunning it), while its heave is slow against the interval
@@ -137,7 +137,7 @@ struct btBuoyancySettings {
     /// Largest prediction error accepted by hydrostaticsInterval's checks, as a fraction of the body's full
     /// buoyancy ρ g V (force; a force error of x is a submerged-volume error of x·V) and of ρ g V × its bounding
     /// diameter (torque); the pose check allows the draft change that would change the force by this fraction
-    /// (btHydrostaticsHistory::poseDeviation, correctedPoseDeviation). A failed check makes the body evaluate exactly
+    /// (HydrostaticsHistory::poseDeviation, correctedPoseDeviation). A failed check makes the body evaluate exactly
     /// for the next interval. Default 1e-4 (0.01 %: the accuracy asked of the submerged volume); with an errorBudget
     /// and an automatic interval the tolerance used is at least errorBudget / 2 (btBuoyancyResolveReuseTolerance).
     /// Finite, > 0, ≤ 1.

@@ -62,7 +62,7 @@ public:
 
     /// Scale of the interpolant's slope |∇f| over the patch, dimensionless: the largest node differences along x and
     /// along z over h, combined as a gradient, plus ½ curvatureBound() h. Used by the temporal level of detail to
-    /// weigh a horizontal drift of the body (btHydrostaticsHistory::poseDeviation); not a strict bound.
+    /// weigh a horizontal drift of the body (HydrostaticsHistory::poseDeviation); not a strict bound.
     double slopeBound() const { return m_slope; }
 
     /// Lowest and highest node height (the interpolant may overshoot by a few per cent of the node spread), m.

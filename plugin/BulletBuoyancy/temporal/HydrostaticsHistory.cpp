@@ -1,22 +1,24 @@
-#include <BulletBuoyancy/bullet/btHydrostaticsHistory.h>
+#include <BulletBuoyancy/temporal/HydrostaticsHistory.h>
 
-#include <BulletBuoyancy/bullet/btBuoyancyState.h>
+#include <BulletBuoyancy/state/StateBlob.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+namespace buoyancy {
 namespace {
-void put(std::array<double, btHydrostaticsHistory::kValues>& x, int at, const Eigen::Vector3d& v) {
+void put(std::array<double, HydrostaticsHistory::kValues>& x, int at, const Eigen::Vector3d& v) {
     for (int i = 0; i < 3; ++i) x[std::size_t(at + i)] = v[i];
 }
-Eigen::Vector3d get(const std::array<double, btHydrostaticsHistory::kValues>& x, int at) {
+Eigen::Vector3d get(const std::array<double, HydrostaticsHistory::kValues>& x, int at) {
     return Eigen::Vector3d(x[std::size_t(at)], x[std::size_t(at + 1)], x[std::size_t(at + 2)]);
 }
 }  // namespace
 
-std::array<double, btHydrostaticsHistory::kValues> btHydrostaticsHistory::pack(const btHydrostaticsSnapshot& s) {
+std::array<double, HydrostaticsHistory::kValues> HydrostaticsHistory::pack(const HydrostaticsSnapshot& s) {
     std::array<double, kValues> x{};
-    const buoyancy::HydrostaticsResult& h = s.hydrostatics;
+    const HydrostaticsResult& h = s.hydrostatics;
     put(x, 0, h.force);
     put(x, 3, h.torque);
     put(x, 6, h.centre_of_buoyancy);
@@ -30,7 +32,7 @@ std::array<double, btHydrostaticsHistory::kValues> btHydrostaticsHistory::pack(c
     put(x, 27, s.dragTorque);
     put(x, 30, s.linearVelocity);
     put(x, 33, s.angularVelocity);
-    const buoyancy::WaterplaneMoments& w = h.waterplane;
+    const WaterplaneMoments& w = h.waterplane;
     x[36] = w.x;
     x[37] = w.z;
     x[38] = w.xx;
@@ -39,9 +41,9 @@ std::array<double, btHydrostaticsHistory::kValues> btHydrostaticsHistory::pack(c
     return x;
 }
 
-btHydrostaticsSnapshot btHydrostaticsHistory::unpack(const std::array<double, kValues>& x) {
-    btHydrostaticsSnapshot s;
-    buoyancy::HydrostaticsResult& h = s.hydrostatics;
+HydrostaticsSnapshot HydrostaticsHistory::unpack(const std::array<double, kValues>& x) {
+    HydrostaticsSnapshot s;
+    HydrostaticsResult& h = s.hydrostatics;
     h.force = get(x, 0);
     h.torque = get(x, 3);
     h.centre_of_buoyancy = get(x, 6);
@@ -56,7 +58,7 @@ btHydrostaticsSnapshot btHydrostaticsHistory::unpack(const std::array<double, kV
     s.dragTorque = get(x, 27);
     s.linearVelocity = get(x, 30);
     s.angularVelocity = get(x, 33);
-    buoyancy::WaterplaneMoments& w = h.waterplane;
+    WaterplaneMoments& w = h.waterplane;
     w.x = x[36];
     w.z = x[37];
     w.xx = std::max(x[38], 0.0);
@@ -65,7 +67,7 @@ btHydrostaticsSnapshot btHydrostaticsHistory::unpack(const std::array<double, kV
     return s;
 }
 
-void btHydrostaticsHistory::push(std::uint64_t substep, double time, const btHydrostaticsSnapshot& snapshot) {
+void HydrostaticsHistory::push(std::uint64_t substep, double time, const HydrostaticsSnapshot& snapshot) {
     for (int i = kStored - 1; i > 0; --i) m_records[std::size_t(i)] = m_records[std::size_t(i - 1)];
     m_records[0].substep = substep;
     m_records[0].time = time;
@@ -74,7 +76,7 @@ void btHydrostaticsHistory::push(std::uint64_t substep, double time, const btHyd
     if (m_count < kStored) ++m_count;
 }
 
-bool btHydrostaticsHistory::find(int interval, int index[kRecords]) const {
+bool HydrostaticsHistory::find(int interval, int index[kRecords]) const {
     if (m_count < kRecords || interval < 2) return false;
     const std::uint64_t k = std::uint64_t(interval);
     index[0] = 0;
@@ -95,7 +97,7 @@ bool btHydrostaticsHistory::find(int interval, int index[kRecords]) const {
     return true;
 }
 
-bool btHydrostaticsHistory::spaced(std::uint64_t substep, double time, int interval, std::uint64_t maxAhead) const {
+bool HydrostaticsHistory::spaced(std::uint64_t substep, double time, int interval, std::uint64_t maxAhead) const {
     int index[kRecords];
     if (!find(interval, index)) return false;
     const Record& newest = m_records[0];
@@ -106,7 +108,7 @@ bool btHydrostaticsHistory::spaced(std::uint64_t substep, double time, int inter
     return std::abs(time - expected) <= 1e-6 * span;
 }
 
-void btHydrostaticsHistory::halveSpacing(int interval) {
+void HydrostaticsHistory::halveSpacing(int interval) {
     int index[kRecords];
     if (interval < 4 || interval % 2 != 0 || !find(interval, index)) {
         clear();
@@ -137,19 +139,19 @@ void btHydrostaticsHistory::halveSpacing(int interval) {
     m_count = 6;
 }
 
-bool btHydrostaticsHistory::canPredict(std::uint64_t substep, double time, int interval) const {
+bool HydrostaticsHistory::canPredict(std::uint64_t substep, double time, int interval) const {
     return interval >= 2 && spaced(substep, time, interval, std::uint64_t(interval) - 1);
 }
 
-bool btHydrostaticsHistory::canCheck(std::uint64_t substep, double time, int interval) const {
+bool HydrostaticsHistory::canCheck(std::uint64_t substep, double time, int interval) const {
     return interval >= 2 && spaced(substep, time, interval, std::uint64_t(interval)) &&
            substep - m_records[0].substep == std::uint64_t(interval);
 }
 
-btHydrostaticsSnapshot btHydrostaticsHistory::extrapolate(std::uint64_t substep, int interval) const {
+HydrostaticsSnapshot HydrostaticsHistory::extrapolate(std::uint64_t substep, int interval) const {
     // Newton's backward-difference formula on four equally spaced samples (see the header).
     int index[kRecords];
-    if (!find(interval, index)) return btHydrostaticsSnapshot{};
+    if (!find(interval, index)) return HydrostaticsSnapshot{};
     const double a = double(substep - m_records[0].substep) / double(interval);
     const double c1 = a, c2 = 0.5 * a * (a + 1.0), c3 = c2 * (a + 2.0) / 3.0;
     const Record &r0 = m_records[0], &r1 = m_records[std::size_t(index[1])], &r2 = m_records[std::size_t(index[2])],
@@ -159,52 +161,52 @@ btHydrostaticsSnapshot btHydrostaticsHistory::extrapolate(std::uint64_t substep,
         const double x0 = r0.x[i], x1 = r1.x[i], x2 = r2.x[i], x3 = r3.x[i];
         y[i] = x0 + c1 * (x0 - x1) + c2 * (x0 - 2.0 * x1 + x2) + c3 * (x0 - 3.0 * (x1 - x2) - x3);
     }
-    btHydrostaticsSnapshot s = unpack(y);
+    HydrostaticsSnapshot s = unpack(y);
     s.hydrostatics.waterplane.valid = r0.waterplane && r1.waterplane && r2.waterplane && r3.waterplane;
     return s;
 }
 
-double btHydrostaticsHistory::volume(int intervalsBack, int interval) const {
+double HydrostaticsHistory::volume(int intervalsBack, int interval) const {
     int index[kRecords];
     if (intervalsBack < 0 || intervalsBack >= kRecords || !find(interval, index)) return 0.0;
     return m_records[std::size_t(index[intervalsBack])].x[9];
 }
 
-double btHydrostaticsHistory::poseDeviation(const Eigen::Vector3d& com, const Eigen::Matrix3d& rotation,
-                                            const btHydrostaticsSnapshot& predicted, double radius, double waterSlope) {
+double HydrostaticsHistory::poseDeviation(const Eigen::Vector3d& com, const Eigen::Matrix3d& rotation,
+                                          const HydrostaticsSnapshot& predicted, double radius, double waterSlope) {
     const Eigen::Vector3d d = com - predicted.com;
     return std::abs(d.y()) + waterSlope * std::hypot(d.x(), d.z()) +
            radius * (rotation - predicted.rotation).norm() / std::sqrt(2.0);
 }
 
-double btHydrostaticsHistory::correctedPoseDeviation(const Eigen::Vector3d& com, const Eigen::Matrix3d& rotation,
-                                                     const btHydrostaticsSnapshot& predicted, double radius,
-                                                     double waterSlope) {
+double HydrostaticsHistory::correctedPoseDeviation(const Eigen::Vector3d& com, const Eigen::Matrix3d& rotation,
+                                                   const HydrostaticsSnapshot& predicted, double radius,
+                                                   double waterSlope) {
     const Eigen::Vector3d d = com - predicted.com;
     const double turn = radius * (rotation - predicted.rotation).norm() / std::sqrt(2.0);  // radius × angle
     const double rise = std::abs(d.y()) + turn;
     return waterSlope * (std::hypot(d.x(), d.z()) + turn) + (radius > 0 ? 8.0 * rise * rise / radius : rise);
 }
 
-double btHydrostaticsHistory::velocityDeviation(const Eigen::Vector3d& linearVelocity,
-                                                const Eigen::Vector3d& angularVelocity,
-                                                const btHydrostaticsSnapshot& predicted, double radius) {
+double HydrostaticsHistory::velocityDeviation(const Eigen::Vector3d& linearVelocity,
+                                              const Eigen::Vector3d& angularVelocity,
+                                              const HydrostaticsSnapshot& predicted, double radius) {
     return (linearVelocity - predicted.linearVelocity).norm() +
            radius * (angularVelocity - predicted.angularVelocity).norm();
 }
 
-void btHydrostaticStiffnessCorrection(btHydrostaticsSnapshot& predicted, const Eigen::Vector3d& com,
-                                      const Eigen::Matrix3d& rotation, double rhoG) {
+void hydrostaticStiffnessCorrection(HydrostaticsSnapshot& predicted, const Eigen::Vector3d& com,
+                                    const Eigen::Matrix3d& rotation, double rhoG) {
     // See the header. The linear part restores the pose; what the waves drive is left to the extrapolation
     // (F = −C δ + G(t) predicted as −C δ + E[G]): extrapolating all of F leads a bobbing body's motion and pumps
     // energy into it (measured: temporal_lod.csv, energy column).
-    buoyancy::HydrostaticsResult& h = predicted.hydrostatics;
+    HydrostaticsResult& h = predicted.hydrostatics;
     const double dy = com.y() - predicted.com.y();
     double dVolume = -h.waterline_area * dy;  // m³
     if (h.waterplane.valid) {
         const Eigen::Matrix3d M = rotation * predicted.rotation.transpose();  // ≈ I + [φ]×
         const Eigen::Vector3d phi(0.5 * (M(2, 1) - M(1, 2)), 0.5 * (M(0, 2) - M(2, 0)), 0.5 * (M(1, 0) - M(0, 1)));
-        const buoyancy::WaterplaneMoments& w = h.waterplane;
+        const WaterplaneMoments& w = h.waterplane;
         dVolume -= phi.z() * w.x - phi.x() * w.z;
         Eigen::Vector3d dTorque(rhoG * (w.z * dy + phi.z() * w.xz - phi.x() * w.zz), 0.0,
                                 -rhoG * (w.x * dy + phi.z() * w.xx - phi.x() * w.xz));
@@ -215,7 +217,7 @@ void btHydrostaticStiffnessCorrection(btHydrostaticsSnapshot& predicted, const E
     h.submerged_volume = std::max(h.submerged_volume + dVolume, 0.0);
 }
 
-void btHydrostaticsHistory::writeState(btBuoyancyStateWriter& out) const {
+void HydrostaticsHistory::writeState(StateWriter& out) const {
     out.u32(std::uint32_t(kStored));
     out.u32(std::uint32_t(kValues));
     out.i32(m_count);
@@ -227,10 +229,10 @@ void btHydrostaticsHistory::writeState(btBuoyancyStateWriter& out) const {
     }
 }
 
-void btHydrostaticsHistory::readState(btBuoyancyStateReader& in) {
+void HydrostaticsHistory::readState(StateReader& in) {
     in.expectCount(in.u32("history records stored"), std::uint32_t(kStored), "the history's stored record count");
     in.expectCount(in.u32("history values per record"), std::uint32_t(kValues), "the history's values per record");
-    btHydrostaticsHistory h;
+    HydrostaticsHistory h;
     h.m_count = in.i32("history record count");
     if (h.m_count < 0 || h.m_count > kStored)
         in.fail("the history holds " + std::to_string(h.m_count) + " records, at most " + std::to_string(kStored));
@@ -242,3 +244,5 @@ void btHydrostaticsHistory::readState(btBuoyancyStateReader& in) {
     }
     *this = h;
 }
+
+}  // namespace buoyancy

@@ -1,11 +1,13 @@
-#include <BulletBuoyancy/bullet/btTemporalLevelOfDetail.h>
+#include <BulletBuoyancy/temporal/TemporalLevelOfDetail.h>
 
-#include <BulletBuoyancy/bullet/btBuoyancyState.h>
+#include <BulletBuoyancy/state/StateBlob.h>
 
 #include <algorithm>
 #include <cmath>
 
-void btTemporalLevelOfDetail::begin(const btTemporalLevelOfDetailSettings& settings) {
+namespace buoyancy {
+
+void TemporalLevelOfDetail::begin(const TemporalLevelOfDetailSettings& settings) {
     // This body's interval: the resolved one, or a divisor of it after repeated misses (record).
     const int resolved = settings.interval;
     m_resolvedInterval = resolved;
@@ -18,7 +20,7 @@ void btTemporalLevelOfDetail::begin(const btTemporalLevelOfDetailSettings& setti
     m_tolerance = settings.tolerance;
 }
 
-double btTemporalLevelOfDetail::reuseLength(double waterlineArea) const {
+double TemporalLevelOfDetail::reuseLength(double waterlineArea) const {
     // ℓ = V / A_waterline: the draft change that moves the pressure force by ρ g V; a body under water
     // (A_waterline = 0) is bounded by V^(1/3).
     const double volume = m_volume;
@@ -26,14 +28,14 @@ double btTemporalLevelOfDetail::reuseLength(double waterlineArea) const {
     return volume / std::max(waterlineArea, volume23);
 }
 
-double btTemporalLevelOfDetail::allowedPoseDeviation(double waterlineArea) const {
+double TemporalLevelOfDetail::allowedPoseDeviation(double waterlineArea) const {
     // A drift δ changes the pressure force by about ρ g A_waterline δ, a fraction δ / ℓ of ρ g V: allow the
     // tolerance's worth.
     return m_tolerance * reuseLength(waterlineArea);
 }
 
-double btTemporalLevelOfDetail::allowedVelocityDeviation(double waterlineArea, double relativeSpeed,
-                                                         double gravity) const {
+double TemporalLevelOfDetail::allowedVelocityDeviation(double waterlineArea, double relativeSpeed,
+                                                       double gravity) const {
     // The velocity scale of ℓ: sqrt(g ℓ) (the speed of a body falling through its draft); drag changes by a
     // fraction of the tolerance when the velocity leaves the extrapolated one by that. A moving body may also
     // deviate by kDragReuseFraction of its speed through the water: quadratic drag then changes by twice that
@@ -43,17 +45,17 @@ double btTemporalLevelOfDetail::allowedVelocityDeviation(double waterlineArea, d
     return std::max(m_tolerance * std::sqrt(gravity * reuseLength(waterlineArea)), kDragReuseFraction * relativeSpeed);
 }
 
-bool btTemporalLevelOfDetail::dragFollows(const Eigen::Vector3d& v, const Eigen::Vector3d& w,
-                                          const Eigen::Vector3d& meanWaterVelocity,
-                                          const btHydrostaticsSnapshot& predicted, double gravity) const {
-    return btHydrostaticsHistory::velocityDeviation(v, w, predicted, m_radius) <=
+bool TemporalLevelOfDetail::dragFollows(const Eigen::Vector3d& v, const Eigen::Vector3d& w,
+                                        const Eigen::Vector3d& meanWaterVelocity,
+                                        const HydrostaticsSnapshot& predicted, double gravity) const {
+    return HydrostaticsHistory::velocityDeviation(v, w, predicted, m_radius) <=
            allowedVelocityDeviation(predicted.hydrostatics.waterline_area,
                                     (v - meanWaterVelocity).norm() + m_radius * w.norm(), gravity);
 }
 
-bool btTemporalLevelOfDetail::predict(const btTemporalLevelOfDetailSubstep& step, const Eigen::Isometry3d& pose,
-                                      const Eigen::Vector3d& com, double bodyLow, double bodyHigh, double waterLow,
-                                      double waterHigh, btHydrostaticsSnapshot& predicted) const {
+bool TemporalLevelOfDetail::predict(const TemporalLevelOfDetailSubstep& step, const Eigen::Isometry3d& pose,
+                                    const Eigen::Vector3d& com, double bodyLow, double bodyHigh, double waterLow,
+                                    double waterHigh, HydrostaticsSnapshot& predicted) const {
     const int interval = m_interval;
     if (m_reuseCooldown > 0 || !m_history.canPredict(step.substep, step.time, interval)) return false;
     predicted = m_history.extrapolate(step.substep, interval);
@@ -78,11 +80,11 @@ bool btTemporalLevelOfDetail::predict(const btTemporalLevelOfDetailSubstep& step
     const double radius = m_radius;
     double deviation;
     if (predicted.hydrostatics.waterplane.valid)
-        deviation = btHydrostaticsHistory::correctedPoseDeviation(com, pose.linear(), predicted, radius,
-                                                                  m_lastWaterSlope);
+        deviation = HydrostaticsHistory::correctedPoseDeviation(com, pose.linear(), predicted, radius,
+                                                                m_lastWaterSlope);
     else
-        deviation = btHydrostaticsHistory::poseDeviation(com, pose.linear(), predicted, radius, m_lastWaterSlope);
-    btHydrostaticStiffnessCorrection(predicted, com, pose.linear(), step.density * step.gravity);
+        deviation = HydrostaticsHistory::poseDeviation(com, pose.linear(), predicted, radius, m_lastWaterSlope);
+    hydrostaticStiffnessCorrection(predicted, com, pose.linear(), step.density * step.gravity);
     // Rounding of the stored positions: each record and the pose now are rounded to the engine's resolution, and the
     // cubic extrapolation weighs the four records by up to 4, 6, 4 and 1 (15 × half a resolution), so a drift of
     // kRoundingResolutions resolutions over the water's slope is noise, not a contact (design.md 2.5).
@@ -93,22 +95,22 @@ bool btTemporalLevelOfDetail::predict(const btTemporalLevelOfDetailSubstep& step
            predicted.dragForce.allFinite() && predicted.dragTorque.allFinite();
 }
 
-void btTemporalLevelOfDetail::record(const btTemporalLevelOfDetailSubstep& step, const btHydrostaticsSnapshot& exact,
-                                     double effectiveMass) {
+void TemporalLevelOfDetail::record(const TemporalLevelOfDetailSubstep& step, const HydrostaticsSnapshot& exact,
+                                   double effectiveMass) {
     const std::uint64_t substep = step.substep;
     const int interval = m_interval;
-    const buoyancy::HydrostaticsResult& h = exact.hydrostatics;
+    const HydrostaticsResult& h = exact.hydrostatics;
     const double scale = step.density * step.gravity * m_volume;
     const double diameter = 2.0 * m_radius;
     // Check the predictor against this exact evaluation (one interval past the newest record: a little further than
-    // any substep it predicted). A miss makes the body evaluate exactly until two checks in a row pass (one pass after a
-    // miss was often luck: in a fleet of 200 boats in the scaling sea the worst predicted substep fell from 0.095 % to
+    // any substep it predicted). A miss makes the body evaluate exactly until two checks in a row pass (one pass after
+    // a miss was often luck: in a fleet of 200 boats in the scaling sea the worst predicted substep fell from 0.095 % to
     // 0.054 % of ρ g V with this and the next rule, at the same share of substeps predicted). Two misses in a row, or
     // three in the last four checks: the body's motion is too fast for its interval (the extrapolation's error grows
     // like the interval⁴), which is halved
     // (down to 2, and only to a divisor of the resolved interval); it is doubled back after 16 passes in a row whose
     // mean error × 2⁴ stays within half the tolerance, or after 64 (a miss in the first four checks after a
-    // doubling halves it again at once). The records are kept across the switches (btHydrostaticsHistory keeps
+    // doubling halves it again at once). The records are kept across the switches (HydrostaticsHistory keeps
     // seven, and interpolates the two a halving needs), so predictions go on without a warm-up. Measured: an
     // undamped sphere bobbing at ω = 4.4 rad/s missed half its checks at 1/30 s and lost 0.5 % of its amplitude a
     // minute through the exact intervals the misses forced; with the halving 0.3 %. A single miss (a wave
@@ -116,9 +118,9 @@ void btTemporalLevelOfDetail::record(const btTemporalLevelOfDetailSubstep& step,
     const double time = step.time;
     bool halve = false;
     if (m_history.canCheck(substep, time, interval)) {
-        btHydrostaticsSnapshot p = m_history.extrapolate(substep, interval);
+        HydrostaticsSnapshot p = m_history.extrapolate(substep, interval);
         // As a prediction at this pose would be.
-        btHydrostaticStiffnessCorrection(p, exact.com, exact.rotation, step.density * step.gravity);
+        hydrostaticStiffnessCorrection(p, exact.com, exact.rotation, step.density * step.gravity);
         // The predictions reach a = (K − 1)/K of the interval, where the cubic's remainder a(a+1)(a+2)(a+3)/24 is
         // that fraction of its value at a = 1 (0.76 at K = 8, 0.56 at K = 4): the error of the furthest prediction.
         const double a = double(interval - 1) / double(interval);
@@ -180,7 +182,7 @@ void btTemporalLevelOfDetail::record(const btTemporalLevelOfDetailSubstep& step,
     }
 }
 
-void btTemporalLevelOfDetail::writeState(btBuoyancyStateWriter& out) const {
+void TemporalLevelOfDetail::writeState(StateWriter& out) const {
     m_history.writeState(out);
     out.i32(m_reuseCooldown);
     out.u64(m_phase);
@@ -194,9 +196,9 @@ void btTemporalLevelOfDetail::writeState(btBuoyancyStateWriter& out) const {
     out.f64(m_lastWaterSlope);
 }
 
-void btTemporalLevelOfDetail::readState(btBuoyancyStateReader& in) {
+void TemporalLevelOfDetail::readState(StateReader& in) {
     // Everything is read into locals first, then committed (a bad blob leaves the controller as it was).
-    btHydrostaticsHistory history;
+    HydrostaticsHistory history;
     history.readState(in);
     const int reuseCooldown = in.i32("reuse cool-down");
     const std::uint64_t phase = in.u64("phase");
@@ -220,3 +222,5 @@ void btTemporalLevelOfDetail::readState(btBuoyancyStateReader& in) {
     m_tolerance = tolerance;
     m_lastWaterSlope = lastWaterSlope;
 }
+
+}  // namespace buoyancy
