@@ -127,13 +127,17 @@ RebakeMap buildRebakeMap(const TriangleMesh& mesh, const std::vector<Eigen::Vect
     return map;
 }
 
-void rebakeSamples(const RebakeMap& map, const std::vector<Eigen::Vector3d>& vertices, SurfaceSamples& out) {
+void checkRebakeVertices(const RebakeMap& map, const std::vector<Eigen::Vector3d>& vertices) {
     if (vertices.size() != map.vertexCount)
         throw std::invalid_argument("rebakeSamples: " + std::to_string(vertices.size()) + " vertices given, the mesh has " +
                                     std::to_string(map.vertexCount));
     for (std::size_t v = 0; v < vertices.size(); ++v)
         if (!vertices[v].allFinite())
             throw std::invalid_argument("rebakeSamples: vertex " + std::to_string(v) + " is not finite");
+}
+
+void rebakeSamples(const RebakeMap& map, const std::vector<Eigen::Vector3d>& vertices, SurfaceSamples& out) {
+    checkRebakeVertices(map, vertices);
     const std::size_t n = map.size();
     out.texture_size = map.texture_size;
     out.method = map.method;

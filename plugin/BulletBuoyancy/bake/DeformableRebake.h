@@ -48,4 +48,8 @@ RebakeMap buildRebakeMap(const TriangleMesh& mesh, const std::vector<Eigen::Vect
 /// @throws std::invalid_argument when the vertex count differs from map.vertexCount or a vertex is not finite
 void rebakeSamples(const RebakeMap& map, const std::vector<Eigen::Vector3d>& vertices, SurfaceSamples& out);
 
+/// rebakeSamples' checks alone: one vertex per mesh vertex of `map`, every one finite.
+/// @throws std::invalid_argument naming the count or the vertex
+void checkRebakeVertices(const RebakeMap& map, const std::vector<Eigen::Vector3d>& vertices);
+
 }  // namespace buoyancy

@@ -32,12 +32,7 @@ std::shared_ptr<btBuoyancyDeformable> btBuoyancyDeformable::create(const btBuoya
 
 void btBuoyancyDeformable::setVertices(const std::vector<Eigen::Vector3d>& vertices) {
     // The checks of rebakeSamples, now, so that a bad call changes nothing; the re-bake itself waits for getSamples.
-    if (vertices.size() != m_map.vertexCount)
-        throw std::invalid_argument("rebakeSamples: " + std::to_string(vertices.size()) + " vertices given, the mesh has " +
-                                    std::to_string(m_map.vertexCount));
-    for (std::size_t v = 0; v < vertices.size(); ++v)
-        if (!vertices[v].allFinite())
-            throw std::invalid_argument("rebakeSamples: vertex " + std::to_string(v) + " is not finite");
+    buoyancy::checkRebakeVertices(m_map, vertices);
     m_vertices = vertices;
     updateBounds();
     ++m_version;

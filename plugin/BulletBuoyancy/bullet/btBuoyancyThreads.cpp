@@ -142,6 +142,15 @@ void parallelOver(int n, int threads, unsigned csr, const Item& item) {
     for (int i = 0; i < n; ++i) item(i);
 }
 
+/// Raised while a batch runs (creating or destroying an action then is refused), lowered when it ends.
+struct BatchFlag {
+    std::atomic<bool>& flag;
+    explicit BatchFlag(std::atomic<bool>& f) : flag(f) { flag.store(true); }
+    ~BatchFlag() { flag.store(false); }
+    BatchFlag(const BatchFlag&) = delete;
+    BatchFlag& operator=(const BatchFlag&) = delete;
+};
+
 /// The registered actions of one kind (`registered`) that are in the Bullet world's action array, in its order, into
 /// `members`; one added to the array twice is left out (it runs at each of its turns, as it would unbatched). Rebuilt
 /// only when the array differs from `seen` (the array it was built from) or `dirty` (registrations changed).
@@ -214,11 +223,7 @@ void btBuoyancyWorld::evaluateBatch(const btCollisionWorld* from, double dt) {
     const int n = int(m_batch.size());
     m_lastBatchSize = m_batch.size();
     if (n == 0) return;
-    struct InBatch {
-        std::atomic<bool>& flag;
-        explicit InBatch(std::atomic<bool>& f) : flag(f) { flag.store(true); }
-        ~InBatch() { flag.store(false); }
-    } inBatch(m_inBatch);
+    const BatchFlag inBatch(m_inBatch);
     // The results do not depend on which thread takes which body (everything a body evaluation writes is the body's
     // own: its action's state, caches and scratch).
     btBuoyancyAction* const* batch = m_batch.data();
@@ -245,11 +250,7 @@ void btBuoyancyWorld::evaluateFloodingBatch(const btCollisionWorld* from, double
     if (std::find(m_floodingBatch.begin(), m_floodingBatch.end(), caller) == m_floodingBatch.end()) return;
     const int n = int(m_floodingBatch.size());
     m_lastFloodingBatchSize = m_floodingBatch.size();
-    struct InBatch {
-        std::atomic<bool>& flag;
-        explicit InBatch(std::atomic<bool>& f) : flag(f) { flag.store(true); }
-        ~InBatch() { flag.store(false); }
-    } inBatch(m_inBatch);
+    const BatchFlag inBatch(m_inBatch);
     // Each flow writes only its own action's water graph and scratch (the body is written at the action's turn).
     btFloodingAction* const* batch = m_floodingBatch.data();
     parallelOver(n, getThreads(), FpState::current(), [batch, dt](int i) { batch[i]->flowForBatch(dt); });
@@ -274,11 +275,7 @@ void btBuoyancyWorld::evaluateTimeVaryingMassBatch(const btCollisionWorld* from,
         if (a->prepareForBatch(time)) m_massRecomputes.push_back(a);
     const int n = int(m_massRecomputes.size());
     if (n == 0) return;
-    struct InBatch {
-        std::atomic<bool>& flag;
-        explicit InBatch(std::atomic<bool>& f) : flag(f) { flag.store(true); }
-        ~InBatch() { flag.store(false); }
-    } inBatch(m_inBatch);
+    const BatchFlag inBatch(m_inBatch);
     // Each computation reads its body's shape and map and writes only its own action's pending result (the body is
     // written at the action's turn).
     btTimeVaryingMassAction* const* batch = m_massRecomputes.data();
