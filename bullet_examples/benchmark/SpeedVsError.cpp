@@ -151,9 +151,9 @@ std::vector<SpeedErrorRow> runSpeedVsError(const std::vector<BenchShape>& shapes
             SampleWorkspace ws;
             const std::size_t first = rows.size();
             for (const PoseReference& pr : sr.poses) {
-                const HydrostaticsResult h =
-                    mesh ? treeHydrostatics(shape->getMomentTree(), shape->getMesh(), pr.pose.pose, water, 0.0, kRho, kG, pr.ref)
-                         : sampledHydrostatics(shape->getSamples(), pr.pose.pose, water, 0.0, kRho, kG, pr.ref, ws);
+                // Through the shape's method entry, as the action evaluates it (design.md 8.2).
+                const HydrostaticsResult h = shape->getIntegrationMethod().evaluate(
+                    shape->getGeometry(shape->getSamples()), pr.pose.pose, {water, 0.0, kRho, kG, pr.ref, nullptr, &ws});
                 SpeedErrorRow row = base(label, texture, variant, samples);
                 row.pose = pr.pose.id;
                 fillErrors(row, sr, pr, h.submerged_volume, h.centre_of_buoyancy, h.torque);
