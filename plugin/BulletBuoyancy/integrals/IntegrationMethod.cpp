@@ -105,6 +105,40 @@ HydrostaticsResult evaluateSampled(const MethodGeometry& geometry, const Eigen::
                                water.torqueReference, *water.workspace, water.cache, water.patch);
 }
 
+// ---- The automatic level of detail's models (LevelOfDetail.h) ----------------------------------------------------
+
+/// Worst submerged-volume error (% of the body's volume) measured by `buoyancy bench` (docs/benchmarks,
+/// speed_vs_error.csv: box, sphere, torus, boat, duck, duck-x4, torus-fine × 15 poses, flat water), per N.
+struct MeasuredError {
+    int n;
+    double exactCoverage;
+    double texelCentre;
+};
+constexpr MeasuredError kMeasured[] = {
+    {32, 1.556, 108.7}, {64, 0.2107, 14.44}, {128, 0.02119, 7.962},
+    {256, 0.005343, 1.29}, {512, 0.001337, 0.414}, {1024, 0.000328, 0.4058},
+};
+/// The measured row of N (the largest measured N not above it).
+const MeasuredError& measuredAt(int n) {
+    const MeasuredError* row = &kMeasured[0];
+    for (const MeasuredError& m : kMeasured)
+        if (m.n <= n) row = &m;
+    return *row;
+}
+double exactCoverageErrorPct(int n) { return measuredAt(n).exactCoverage; }
+double texelCentreErrorPct(int n) { return measuredAt(n).texelCentre; }
+/// Exact-mesh is exact to rounding in flat water (measured ≤ 6e-12 %).
+double exactMeshErrorPct(int) { return 1e-10; }
+/// Cost model, ns per body-substep (one btBuoyancyAction substep, flat water, drag on; docs/benchmarks run of
+/// 2026-11-22 on a loaded 2-core machine): ≈ 15 ns per clipped triangle (sphere 3968: 60 µs, torus 4096: 71 µs)
+/// and ≈ 13 ns per surface sample at 64²–256² (more above: cache misses), and the samples an N² texture yields
+/// (0.49–0.93 N² measured; the middle is used).
+constexpr double kNsPerTriangle = 15.0;
+constexpr double kNsPerSample = 13.0;
+constexpr double kSamplesPerTexel = 0.7;
+double exactMeshCostNs(std::size_t triangles, int) { return kNsPerTriangle * double(triangles); }
+double sampledCostNs(std::size_t, int n) { return kNsPerSample * kSamplesPerTexel * double(n) * double(n); }
+
 IntegrationMethod entry(BuoyancyMethod method, const char* name, bool sampled, bool deviceBatched, BakeMethod bake,
                         int textureSize,
                         void (*prepare)(const TriangleMesh&, const PrepareOptions&, PreparedShape&),
@@ -122,6 +156,15 @@ IntegrationMethod entry(BuoyancyMethod method, const char* name, bool sampled, b
     return m;
 }
 
+/// `m` with the level of detail's models.
+IntegrationMethod withModel(IntegrationMethod m, bool automatic, double (*errorPct)(int),
+                            double (*costNs)(std::size_t, int)) {
+    m.automatic = automatic;
+    m.modelErrorPct = errorPct;
+    m.modelCostNs = costNs;
+    return m;
+}
+
 }  // namespace
 
 const std::vector<IntegrationMethod>& integrationMethods() {
@@ -129,12 +172,15 @@ const std::vector<IntegrationMethod>& integrationMethods() {
     // meets the default accuracy goals (docs/accuracy.md) on the shapes and models we test.
     static const std::vector<IntegrationMethod> methods = {
         //    method                        name              sampled device  bake                       N
-        entry(BuoyancyMethod::TexelCentre,   "texel-centre",   true,   true,   BakeMethod::TexelCentre,   512,
-              prepareTexelCentre, evaluateSampled),
-        entry(BuoyancyMethod::ExactCoverage, "exact-coverage", true,   true,   BakeMethod::ExactCoverage, 128,
-              prepareExactCoverage, evaluateSampled),
-        entry(BuoyancyMethod::ExactMesh,     "exact-mesh",     false,  false,  BakeMethod::ExactCoverage, 0,
-              prepareExactMesh, evaluateExactMesh),
+        withModel(entry(BuoyancyMethod::TexelCentre,   "texel-centre",   true,   true,   BakeMethod::TexelCentre,   512,
+                        prepareTexelCentre, evaluateSampled),
+                  false, texelCentreErrorPct, sampledCostNs),
+        withModel(entry(BuoyancyMethod::ExactCoverage, "exact-coverage", true,   true,   BakeMethod::ExactCoverage, 128,
+                        prepareExactCoverage, evaluateSampled),
+                  true, exactCoverageErrorPct, sampledCostNs),
+        withModel(entry(BuoyancyMethod::ExactMesh,     "exact-mesh",     false,  false,  BakeMethod::ExactCoverage, 0,
+                        prepareExactMesh, evaluateExactMesh),
+                  true, exactMeshErrorPct, exactMeshCostNs),
     };
     return methods;
 }

@@ -79,6 +79,19 @@ struct IntegrationMethod {
     /// Evaluate the hydrostatics of one pose (body → world), world frame, torque about water.torqueReference.
     HydrostaticsResult (*evaluate)(const MethodGeometry& geometry, const Eigen::Isometry3d& pose,
                                    const MethodWater& water) = nullptr;
+    /// @name The automatic level of detail's model of the method (integrals/LevelOfDetail.h, design.md 8.2)
+    ///@{
+    /// True when errorBudget's pick for the Auto method considers this method (it is always considered when asked
+    /// for by name).
+    bool automatic = false;
+    /// Worst submerged-volume error measured in flat water by `buoyancy bench` (docs/benchmarks speed_vs_error.csv,
+    /// seven shapes × 15 poses), % of the body's volume, for an N × N texture (`textureSize`, one of
+    /// kLodTextureSizes; 0 for a method without a texture). Before kLodSafetyFactor.
+    double (*modelErrorPct)(int textureSize) = nullptr;
+    /// Cost model, ns per body-substep (flat water, drag on) for a mesh of `triangles` triangles and an N × N
+    /// texture; only the ratios between methods matter for the pick.
+    double (*modelCostNs)(std::size_t triangles, int textureSize) = nullptr;
+    ///@}
 };
 
 /// Every method, in the order of the enumeration (Auto excluded).

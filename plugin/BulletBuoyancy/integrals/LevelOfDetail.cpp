@@ -3,48 +3,27 @@
 
 #include <BulletBuoyancy/integrals/LevelOfDetail.h>
 
+#include <BulletBuoyancy/integrals/IntegrationMethod.h>
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 namespace buoyancy {
 
-namespace {
-
-/// Worst submerged-volume error (% of the body's volume) measured by `buoyancy bench` (docs/benchmarks,
-/// speed_vs_error.csv: box, sphere, torus, boat, duck, duck-x4, torus-fine × 15 poses, flat water), per N.
-struct MeasuredError {
-    int n;
-    double exactCoverage;
-    double texelCentre;
-};
-constexpr MeasuredError kMeasured[] = {
-    {32, 1.556, 108.7}, {64, 0.2107, 14.44}, {128, 0.02119, 7.962},
-    {256, 0.005343, 1.29}, {512, 0.001337, 0.414}, {1024, 0.000328, 0.4058},
-};
-/// Exact-mesh is exact to rounding in flat water (measured ≤ 6e-12 %).
-constexpr double kExactMeshErrorPct = 1e-10;
-/// Cost model, ns per body-substep (one btBuoyancyAction substep, flat water, drag on; docs/benchmarks run of
-/// 2026-11-22 on a loaded 2-core machine): ≈ 15 ns per clipped triangle (sphere 3968: 60 µs, torus 4096: 71 µs)
-/// and ≈ 13 ns per surface sample at 64²–256² (more above: cache misses), and the samples an N² texture yields
-/// (0.49–0.93 N² measured; the middle is used). Only the ratio of the two matters for the pick.
-constexpr double kNsPerTriangle = 15.0;
-constexpr double kNsPerSample = 13.0;
-constexpr double kSamplesPerTexel = 0.7;
-
-}  // namespace
-
 std::vector<LodCandidate> lodCandidates(BuoyancyMethod requested, std::size_t triangleCount) {
+    // Each method's model is on its registry entry (IntegrationMethod::modelErrorPct, modelCostNs): a method without
+    // a texture is one candidate, a sampled one a candidate per texture size.
     std::vector<LodCandidate> c;
-    if (requested == BuoyancyMethod::Auto || requested == BuoyancyMethod::ExactMesh)
-        c.push_back({BuoyancyMethod::ExactMesh, 0, kExactMeshErrorPct, kNsPerTriangle * double(triangleCount)});
-    if (requested == BuoyancyMethod::ExactMesh) return c;
-    for (const MeasuredError& m : kMeasured) {
-        const double cost = kNsPerSample * kSamplesPerTexel * double(m.n) * double(m.n);
-        if (requested == BuoyancyMethod::Auto || requested == BuoyancyMethod::ExactCoverage)
-            c.push_back({BuoyancyMethod::ExactCoverage, m.n, kLodSafetyFactor * m.exactCoverage, cost});
-        if (requested == BuoyancyMethod::TexelCentre)
-            c.push_back({BuoyancyMethod::TexelCentre, m.n, kLodSafetyFactor * m.texelCentre, cost});
+    for (const IntegrationMethod& m : integrationMethods()) {
+        if (!(requested == m.method || (requested == BuoyancyMethod::Auto && m.automatic))) continue;
+        if (!m.modelErrorPct || !m.modelCostNs) continue;
+        if (!m.sampled) {
+            c.push_back({m.method, 0, kLodSafetyFactor * m.modelErrorPct(0), m.modelCostNs(triangleCount, 0)});
+            continue;
+        }
+        for (int n : kLodTextureSizes)
+            c.push_back({m.method, n, kLodSafetyFactor * m.modelErrorPct(n), m.modelCostNs(triangleCount, n)});
     }
     return c;
 }

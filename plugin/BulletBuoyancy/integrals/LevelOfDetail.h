@@ -25,6 +25,8 @@ struct LodCandidate {
 
 /// Margin on the measured worst errors (other meshes than the benchmark's can be somewhat worse).
 constexpr double kLodSafetyFactor = 2.0;
+/// The texture sizes the automatic pick considers for a sampled method (the sizes the error model was measured at).
+constexpr int kLodTextureSizes[] = {32, 64, 128, 256, 512, 1024};
 
 /// What pickLevelOfDetail chose and why.
 struct LodChoice {
