@@ -614,7 +614,74 @@ void btBuoyancyAction::applyPending() {
     if (events > 0) m_world->dispatchEvents(*this, types, waterBodies, events, m_submergedFraction);
 }
 
+/// What the gate phases of evaluate learn about the body and its water in one substep (on evaluate's stack; read-only
+/// once bodyReachesWater has let the body on). Everything is in the world's water frame (btWaterFrame).
+struct btBuoyancyAction::SubstepContext {
+    double dt = 0;                          ///< the substep, s (> 0, finite)
+    /// The water the body is in: the world's unbounded water, then (chooseWater) the chosen water body's, or nullptr.
+    const btWaterSurface* water = nullptr;
+    bool bounded = false;                   ///< the world has water bodies (btBuoyancyWorld::addWaterBody)
+    bool waves = false;                     ///< water that changes over time may reach the body (keeps it awake)
+    double time = 0;                        ///< the water's time, s
+    double g = 0;                           ///< the world's gravity along the water's down axis, m/s²
+    const btWaterFrame* frame = nullptr;    ///< the world's water frame
+    Eigen::Isometry3d pose;                 ///< the mesh's pose
+    Eigen::Vector3d com;                    ///< the centre of mass (the torque reference), m
+    Eigen::Vector3d bc;                     ///< the centre of the body's bounding sphere, m
+    double br = 0;                          ///< its radius, m
+    bool straddling = false;                ///< the body straddles water bodies (m_straddling)
+    double lo = 0, hi = 0;                  ///< the water's lowest and highest heights over the footprint, m
+    double rho = 0;                         ///< the density of the body's water, kg/m³
+};
+
+/// What the phases of evaluate for a body the water reaches hand each other (on evaluate's stack, water frame).
+struct btBuoyancyAction::SubstepForces {
+    btTemporalLevelOfDetailSubstep lodStep; ///< the substep as the temporal level of detail sees it
+    bool evaluationSubstep = false;         ///< an exact evaluation substep of the temporal level of detail (recorded)
+    bool predicted = false;                 ///< h and the drag come from the temporal level of detail's prediction
+    btHydrostaticsSnapshot prediction;      ///< the prediction (when predicted)
+    buoyancy::HydrostaticsResult h;         ///< this substep's hydrostatics (torque about the centre of mass)
+    double flatH = 0;                       ///< the height of flat water, m (when flat)
+    bool flat = false;                      ///< the water is flat at this time
+    bool dragOn = false;                    ///< any drag, skin friction or damping is set
+    const buoyancy::WaterPatch* patch = nullptr;     ///< the wave patch the hydrostatics use, or nullptr
+    const buoyancy::WaterPatch* dragPatch = nullptr; ///< the wave patch the drag uses, or nullptr
+    bool onDevice = false;                  ///< h came from the world's device backend
+    double m = 0;                           ///< the body's mass, kg
+    Eigen::Vector3d ma;                     ///< added mass per axis, kg
+    Eigen::Vector3d meff;                   ///< m + m_a per axis, kg
+    Eigen::Vector3d gravityAcc;             ///< the body's own gravity, m/s²
+    Eigen::Vector3d waterForce;             ///< m_a Du/Dt [+ ρ V_sub Du/Dt], N
+    Eigen::Vector3d replacedPressure;       ///< [F_p − ρ g V_sub ŷ], N
+    bool waterForceOn = false;              ///< waterForce and replacedPressure apply
+    Eigen::Vector3d v, w;                   ///< the velocities drag is evaluated at, m/s, rad/s
+    Eigen::Vector3d dragF, dragT;           ///< drag force (N) and torque about the centre of mass (N·m)
+    Eigen::Vector3d uMean;                  ///< the drag's mean water velocity, m/s
+    double linearPower = 0;                 ///< the linear damping's part of the drag's power, W (≤ 0)
+    bool dragComputed = false;              ///< linearPower is this substep's (not an extrapolated drag)
+    Eigen::Vector3d linearImpulse;          ///< N·s
+    Eigen::Vector3d angularImpulse;         ///< N·m·s
+};
+
 void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double dt) {
+    startEvaluation(collisionWorld);
+    SubstepContext c;
+    c.dt = dt;
+    if (!readWorld(c) || !readBodyPose(c) || !chooseWater(c) || !bodyReachesWater(c)) return;
+    SubstepForces f;
+    predictHydrostatics(c, f);
+    buildWaterPatch(c, f);
+    if (!evaluateHydrostatics(c, f)) return;
+    addedMassAndWaterForce(c, f);
+    evaluateDrag(c, f);
+    recordTemporalLevelOfDetail(c, f);
+    implicitDragScale(c, f);
+    computeImpulses(c, f);
+    recordResult(c, f);
+    decideImpulseAndSleep(c, f);
+}
+
+void btBuoyancyAction::startEvaluation(const btCollisionWorld* collisionWorld) {
     m_evaluatedSubstep = m_world->getSubstep();
     m_pendingActivate = m_pendingSleep = m_pendingImpulse = false;
     m_result.applied = false;
@@ -630,13 +697,15 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     (void)collisionWorld;
 #endif
     m_result.applied = false;
+}
+
+bool btBuoyancyAction::readWorld(SubstepContext& c) {
     // A body removed from its world while this action stays in it: do nothing until it is back.
-    if (!m_body->getBroadphaseHandle() && !m_outsideWorld) return;
+    if (!m_body->getBroadphaseHandle() && !m_outsideWorld) return false;
     // The unbounded water, or water bodies (btBuoyancyWorld::addWaterBody): chosen below, once the pose is known.
-    const btWaterSurface* water = m_world->getWater();
-    const std::vector<btWaterBody>& waterBodies = m_world->getWaterBodies();
-    const bool bounded = !waterBodies.empty();
-    if ((!water && !bounded) || m_body->getInvMass() == btScalar(0)) return;
+    c.water = m_world->getWater();
+    c.bounded = !m_world->getWaterBodies().empty();
+    if ((!c.water && !c.bounded) || m_body->getInvMass() == btScalar(0)) return false;
     // No buoyancy without a gravity along the water's down axis (zero, or a world that is not y-up): say why,
     // forget the history (its fields belong to another gravity) and apply nothing; never a NaN or an exception.
     if (m_world->getGravityStatus() != btBuoyancyStatus::Ok) {
@@ -648,21 +717,25 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         m_pendingSleep = true;
         m_pendingLinearSleep = btScalar(m_baseLinearSleep);
         m_pendingAngularSleep = btScalar(m_baseAngularSleep);
-        return;
+        return false;
     }
     // Water bodies: any wavy one may reach the body; narrowed to the waters it reaches once they are known (below).
-    bool waves = bounded ? m_world->isAnyWaterBodyTimeVarying() : water->isTimeVarying();
-    if (!m_body->isActive() && !waves) {  // calm water: a sleeping body stays asleep
+    c.waves = c.bounded ? m_world->isAnyWaterBodyTimeVarying() : c.water->isTimeVarying();
+    if (!m_body->isActive() && !c.waves) {  // calm water: a sleeping body stays asleep
         m_needsPrime = true;
         m_lod.clear();
-        return;
+        return false;
     }
+    return true;
+}
 
-    const double time = m_world->getTime();
-    const double g = m_world->getGravity();
+bool btBuoyancyAction::readBodyPose(SubstepContext& c) {
+    c.time = m_world->getTime();
+    c.g = m_world->getGravity();
     // Everything below is evaluated in the water frame (btWaterFrame: the surface is y = f(x, z, t) there); the
     // impulses and the result are mapped back to the world at the end. Identity for a +y-up world.
-    const btWaterFrame& frame = m_world->getWaterFrame();
+    c.frame = &m_world->getWaterFrame();
+    const btWaterFrame& frame = *c.frame;
     if (m_frameVersion != m_world->getWaterFrameVersion()) {  // a new frame: records and caches of the old one go
         m_frameVersion = m_world->getWaterFrameVersion();
         m_lod.clear();
@@ -672,94 +745,108 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         m_probeCache.reset();
         m_patchCache.reset();
     }
-    const Eigen::Isometry3d pose = frame.toWater(toEigen(m_body->getWorldTransform() * getMeshInComFrame()));
-    const Eigen::Vector3d com = frame.toWaterPoint(toEigen(m_body->getCenterOfMassPosition()));
+    c.pose = frame.toWater(toEigen(m_body->getWorldTransform() * getMeshInComFrame()));
+    c.com = frame.toWaterPoint(toEigen(m_body->getCenterOfMassPosition()));
     // A NaN/Inf pose (set by the user, or a body Bullet already lost) is refused here: nothing below may
     // throw through Bullet's stepSimulation (clippedHydrostatics threw invalid_argument).
-    if (!pose.matrix().allFinite() || !com.allFinite()) {
+    if (!c.pose.matrix().allFinite() || !c.com.allFinite()) {
         ++m_rejected;
         m_lod.clear();
-        return;
+        return false;
     }
 
-    // Whole body above the highest water point: nothing to do (design.md 2.5).
-    // a deformable body's bounds follow its vertices
-    const Eigen::Vector3d bc = pose * (m_deformable ? m_deformable->getBoundsCentre() : m_shape->getBoundsCentre());
-    const double br = m_deformable ? m_deformable->getBoundsRadius() : m_shape->getBoundsRadius();
-    // Water bodies (design.md 2.9): the regions the bounding sphere reaches; none: no buoyancy and no drag, as above
-    // the water. The one nearest the centre of mass gives the drag's water and density. A sphere inside one region
-    // (within its sides and above its bottom) takes the single-water path below with that water; a body reaching out
-    // of its region or into several straddles: its pressure comes from regionHydrostatics, each part of its surface
-    // pressed by the water of the region it is in. One unbounded water: nothing to choose.
-    int waterBody = -1;
-    bool straddling = false;
-    double lo = 0, hi = 0;
-    // Out of line, so the single-water path's code is laid out as before water bodies (measured with callgrind: the
-    // inlined version cost the single-water path 0.2 % more instructions, this one 0.13 %).
-    const auto chooseWaterBody = [&]() BB_NOT_INLINED {
-        const Eigen::Vector3d centreWorld = frame.toWorldPoint(bc);
-        waterBody = m_world->findWaterBody(centreWorld, br, toEigen(m_body->getCenterOfMassPosition()));
-        // (A deformable body's cut would need its deformed mesh: it takes the nearest region's water whole.)
-        if (waterBody >= 0 && !m_deformable) straddling = !reachesOnlyWaterBody(std::size_t(waterBody), centreWorld, br);
-        m_straddling = straddling;
-        if (straddling) {
-            // The water's bounds over the footprint: the widest of the regions reached.
-            m_regionsReached.clear();
-            for (std::size_t i = 0; i < waterBodies.size(); ++i) {
-                if (!(waterBodies[i].distanceTo(frame, centreWorld) <= br)) continue;
-                const bool first = m_regionsReached.empty();
-                const std::size_t before = m_regionsReached.size();
-                appendRegionsOf(waterBodies[i]);
-                // Only the pieces the sphere may reach (a long shore has many footprint triangles): a piece one of
-                // whose planes has the whole sphere outside is left out.
-                std::size_t kept = before;
-                for (std::size_t k = before; k < m_regionsReached.size(); ++k) {
-                    const buoyancy::WaterRegion& piece = m_regionsReached[k];
-                    bool reaches = true;
-                    for (int p = 0; p < piece.planeCount && reaches; ++p)
-                        reaches = piece.normal[p].dot(bc) - br <= piece.offset[p];
-                    if (reaches) m_regionsReached[kept++] = piece;
-                }
-                m_regionsReached.resize(kept, buoyancy::WaterRegion());
-                double l = 0, u = 0;
-                waterBodies[i].surface->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, l, u);
-                lo = first ? l : std::min(lo, l);
-                hi = first ? u : std::max(hi, u);
-            }
-        }
-        if (waterBody != m_activeWaterBody) {
-            m_lod.clear();  // its records belong to another water
-            m_waterCache.reset();
-            m_dragCache.reset();
-            m_probeCache.reset();
-            m_patchCache.reset();
-            m_activeWaterBody = waterBody;
-        }
-        water = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].surface : nullptr;
-        m_activeDensity = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].fluidDensity : m_world->getFluidDensity();
-    };
-    if (bounded) {
-        chooseWaterBody();
+    // The bounding sphere: a deformable body's bounds follow its vertices
+    c.bc = c.pose * (m_deformable ? m_deformable->getBoundsCentre() : m_shape->getBoundsCentre());
+    c.br = m_deformable ? m_deformable->getBoundsRadius() : m_shape->getBoundsRadius();
+    return true;
+}
+
+// Water bodies (design.md 2.9): the regions the bounding sphere reaches; none: no buoyancy and no drag, as above
+// the water. The one nearest the centre of mass gives the drag's water and density. A sphere inside one region
+// (within its sides and above its bottom) takes the single-water path below with that water; a body reaching out
+// of its region or into several straddles: its pressure comes from regionHydrostatics, each part of its surface
+// pressed by the water of the region it is in. One unbounded water: nothing to choose.
+bool btBuoyancyAction::chooseWater(SubstepContext& c) {
+    if (c.bounded) {
+        chooseWaterBody(c);
     } else {
         m_activeDensity = m_world->getFluidDensity();
         m_straddling = false;
     }
-    m_activeWater = water;
-    if (bounded && waves) {
+    m_activeWater = c.water;
+    if (c.bounded && c.waves) {
         // Only the waters the body reaches keep it awake: a body asleep in a calm pool beside a wavy lake sleeps on.
-        waves = water && water->isTimeVarying();
-        if (straddling)
-            for (const buoyancy::WaterRegion& region : m_regionsReached) waves = waves || region.water->isTimeVarying();
-        if (!m_body->isActive() && !waves) {
+        c.waves = c.water && c.water->isTimeVarying();
+        if (c.straddling)
+            for (const buoyancy::WaterRegion& region : m_regionsReached)
+                c.waves = c.waves || region.water->isTimeVarying();
+        if (!m_body->isActive() && !c.waves) {
             m_needsPrime = true;
             m_lod.clear();
-            return;
+            return false;
         }
     }
-    const double rho = m_activeDensity;
-    if (water && !straddling) water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, time, lo, hi);
-    if (straddling) m_lod.clear();  // no temporal level of detail across regions (evaluated exactly)
-    if (!water || bc.y() - br >= hi) {
+    c.rho = m_activeDensity;
+    return true;
+}
+
+// Out of line, so the single-water path's code is laid out as before water bodies (measured with callgrind: the
+// inlined version cost the single-water path 0.2 % more instructions, this one 0.13 %).
+BB_NOT_INLINED void btBuoyancyAction::chooseWaterBody(SubstepContext& c) {
+    const std::vector<btWaterBody>& waterBodies = m_world->getWaterBodies();
+    const btWaterFrame& frame = *c.frame;
+    const Eigen::Vector3d& bc = c.bc;
+    const double br = c.br;
+    const Eigen::Vector3d centreWorld = frame.toWorldPoint(bc);
+    const int waterBody = m_world->findWaterBody(centreWorld, br, toEigen(m_body->getCenterOfMassPosition()));
+    // (A deformable body's cut would need its deformed mesh: it takes the nearest region's water whole.)
+    if (waterBody >= 0 && !m_deformable) c.straddling = !reachesOnlyWaterBody(std::size_t(waterBody), centreWorld, br);
+    m_straddling = c.straddling;
+    if (c.straddling) {
+        // The water's bounds over the footprint: the widest of the regions reached.
+        m_regionsReached.clear();
+        for (std::size_t i = 0; i < waterBodies.size(); ++i) {
+            if (!(waterBodies[i].distanceTo(frame, centreWorld) <= br)) continue;
+            const bool first = m_regionsReached.empty();
+            const std::size_t before = m_regionsReached.size();
+            appendRegionsOf(waterBodies[i]);
+            // Only the pieces the sphere may reach (a long shore has many footprint triangles): a piece one of
+            // whose planes has the whole sphere outside is left out.
+            std::size_t kept = before;
+            for (std::size_t k = before; k < m_regionsReached.size(); ++k) {
+                const buoyancy::WaterRegion& piece = m_regionsReached[k];
+                bool reaches = true;
+                for (int p = 0; p < piece.planeCount && reaches; ++p)
+                    reaches = piece.normal[p].dot(bc) - br <= piece.offset[p];
+                if (reaches) m_regionsReached[kept++] = piece;
+            }
+            m_regionsReached.resize(kept, buoyancy::WaterRegion());
+            double l = 0, u = 0;
+            waterBodies[i].surface->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, c.time, l, u);
+            c.lo = first ? l : std::min(c.lo, l);
+            c.hi = first ? u : std::max(c.hi, u);
+        }
+    }
+    if (waterBody != m_activeWaterBody) {
+        m_lod.clear();  // its records belong to another water
+        m_waterCache.reset();
+        m_dragCache.reset();
+        m_probeCache.reset();
+        m_patchCache.reset();
+        m_activeWaterBody = waterBody;
+    }
+    c.water = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].surface : nullptr;
+    m_activeDensity = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].fluidDensity : m_world->getFluidDensity();
+}
+
+bool btBuoyancyAction::bodyReachesWater(SubstepContext& c) {
+    const Eigen::Vector3d& bc = c.bc;
+    const double br = c.br;
+    if (c.water && !c.straddling)
+        c.water->heightBounds(bc.x() - br, bc.z() - br, bc.x() + br, bc.z() + br, c.time, c.lo, c.hi);
+    if (c.straddling) m_lod.clear();  // no temporal level of detail across regions (evaluated exactly)
+    // Whole body above the highest water point: nothing to do (design.md 2.5).
+    if (!c.water || bc.y() - br >= c.hi) {
         m_needsPrime = false;  // dry: the missed kick was zero
         m_lod.clear();
         m_hasLastCom = false;  // out of the water Bullet's own sleeping test is right again
@@ -767,46 +854,51 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         m_pendingLinearSleep = btScalar(m_baseLinearSleep);
         m_pendingAngularSleep = btScalar(m_baseAngularSleep);
         m_result = btBuoyancyResult();
-        m_result.time = time;
+        m_result.time = c.time;
         m_submergedFraction = 0;
-        return;
+        return false;
     }
-    if (waves) m_pendingActivate = true;  // written at applyPending
+    if (c.waves) m_pendingActivate = true;  // written at applyPending
+    return true;
+}
 
+void btBuoyancyAction::predictHydrostatics(const SubstepContext& c, SubstepForces& f) {
     // Temporal level of detail (settings.hydrostaticsInterval, btHydrostaticsHistory): exact at this body's
     // evaluation substeps, predicted in between while the checks allow it.
     const std::uint64_t substep = m_world->getSubstep();
     btTemporalLevelOfDetailSettings lodSettings;
-    lodSettings.interval = btBuoyancyResolveInterval(m_settings, dt);
+    lodSettings.interval = btBuoyancyResolveInterval(m_settings, c.dt);
     lodSettings.tolerance = btBuoyancyResolveReuseTolerance(m_settings);
     m_lod.begin(lodSettings);
-    btTemporalLevelOfDetailSubstep lodStep;
+    btTemporalLevelOfDetailSubstep& lodStep = f.lodStep;
     lodStep.substep = substep;
-    lodStep.time = time;
-    lodStep.dt = dt;
-    lodStep.density = rho;
-    lodStep.gravity = g;
+    lodStep.time = c.time;
+    lodStep.dt = c.dt;
+    lodStep.density = c.rho;
+    lodStep.gravity = c.g;
     {
         const btVector3& origin = m_body->getWorldTransform().getOrigin();
         const double reach = std::max({std::abs(double(origin.x())), std::abs(double(origin.y())),
                                        std::abs(double(origin.z()))});
         lodStep.positionResolution = double(std::numeric_limits<btScalar>::epsilon()) * reach;
     }
-    const bool temporalLod = m_lod.getInterval() > 1 && !straddling && m_settings.buoyancyEnabled && !m_deformable &&
+    const bool temporalLod = m_lod.getInterval() > 1 && !c.straddling && m_settings.buoyancyEnabled && !m_deformable &&
                              !m_world->getDeviceBackend();
-    const bool evaluationSubstep = temporalLod && m_lod.isEvaluationSubstep(substep);
-    btHydrostaticsSnapshot prediction;
-    const bool predicted = temporalLod && !evaluationSubstep && !m_needsPrime &&
-                           m_lod.predict(lodStep, pose, com, bc.y() - br, bc.y() + br, lo, hi, prediction);
-    buoyancy::HydrostaticsResult h = predicted ? prediction.hydrostatics : buoyancy::HydrostaticsResult();
+    f.evaluationSubstep = temporalLod && m_lod.isEvaluationSubstep(substep);
+    f.predicted = temporalLod && !f.evaluationSubstep && !m_needsPrime &&
+                  m_lod.predict(lodStep, c.pose, c.com, c.bc.y() - c.br, c.bc.y() + c.br, c.lo, c.hi, f.prediction);
+    f.h = f.predicted ? f.prediction.hydrostatics : buoyancy::HydrostaticsResult();
+}
 
+void btBuoyancyAction::buildWaterPatch(const SubstepContext& c, SubstepForces& f) {
+    const btWaterSurface* water = c.water;
     // Fewer wave queries (design.md 2.5): on a non-flat surface, one query per node of a small grid over
     // the body's footprint, interpolated at every vertex, sample and drag cluster.
-    double flatH = 0;
-    const bool flat = water->isFlat(time, flatH);
-    const buoyancy::WaterPatch* patch = nullptr;
-    const bool dragOn = m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 ||
-                        m_settings.linearDamping > 0 || m_settings.radiationDamping > 0;
+    f.flatH = 0;
+    f.flat = water->isFlat(c.time, f.flatH);
+    f.patch = nullptr;
+    f.dragOn = m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 ||
+               m_settings.linearDamping > 0 || m_settings.radiationDamping > 0;
     // Only for surfaces that say a query costs more than the interpolation (btWaterSurface::prefersHeightPatch:
     // Gerstner's Newton inversion): a grid, FFT or interactive surface answers by a lookup cheaper than the
     // interpolation, and its short ripples would be smoothed away.
@@ -814,41 +906,48 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // has fewer nodes than the points it stands for: the hydrostatics (the mesh's vertices for the exact-mesh
     // method, or the samples) and the drag (its clusters) decide apart, so a small
     // body's drag probes do not put its hydrostatics on interpolated heights. Not needed by either: not built.
-    const buoyancy::WaterPatch* dragPatch = nullptr;
-    if (!predicted && !flat && !straddling && m_settings.waterPatchNodes > 0 &&
+    f.dragPatch = nullptr;
+    if (!f.predicted && !f.flat && !c.straddling && m_settings.waterPatchNodes > 0 &&
         water->prefersHeightPatch()) {
-        const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, br, water->shortestWavelength()));
+        const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, c.br, water->shortestWavelength()));
         // The exact-mesh method counts its vertices, not its edge midpoints too: measured in the wave benchmark (the
         // 16-sided cylinder, 34 vertices and 96 edges, swell), exact heights took 13 µs and the patch 22 µs (its
         // third-derivative estimate splits more) at the same error.
         const std::size_t hydroPoints = m_shape->getIntegrationMethod().sampled ? getSamplesInUse().size()
                                                                                 : m_shape->getMesh().vertices.size();
-        const std::size_t dragPoints = dragOn ? m_drag->size() : 0;
+        const std::size_t dragPoints = f.dragOn ? m_drag->size() : 0;
         if (nodes * nodes < std::max(hydroPoints, dragPoints)) {
             try {
                 // Scratch of the calling thread: the patch is built afresh at every exact evaluation and used only
                 // within it (its warm start, m_patchCache, is the body's). A per-body patch (8 KB of cells for 11
                 // nodes) was out of the cache again by the body's next exact evaluation in a large fleet.
                 thread_local buoyancy::WaterPatch patchScratch;
-                patchScratch.build(*water, bc.x(), bc.z(), br, time, int(nodes), m_patchCache);
+                patchScratch.build(*water, c.bc.x(), c.bc.z(), c.br, c.time, int(nodes), m_patchCache);
                 if (patchScratch.finite()) {
-                    if (nodes * nodes < hydroPoints) patch = &patchScratch;
-                    if (nodes * nodes < dragPoints) dragPatch = &patchScratch;
+                    if (nodes * nodes < hydroPoints) f.patch = &patchScratch;
+                    if (nodes * nodes < dragPoints) f.dragPatch = &patchScratch;
                 }
             } catch (const std::exception&) {
-                patch = dragPatch = nullptr;  // a degenerate footprint: fall back to exact queries
+                f.patch = f.dragPatch = nullptr;  // a degenerate footprint: fall back to exact queries
             }
         }
     }
 
-    const buoyancy::WaterPatch* built = patch ? patch : dragPatch;
-    if (!predicted) m_lod.setWaterSlope(flat ? 0.0 : built ? built->slopeBound() : 1.0);
+    const buoyancy::WaterPatch* built = f.patch ? f.patch : f.dragPatch;
+    if (!f.predicted) m_lod.setWaterSlope(f.flat ? 0.0 : built ? built->slopeBound() : 1.0);
+}
 
+bool btBuoyancyAction::evaluateHydrostatics(const SubstepContext& c, SubstepForces& f) {
+    const Eigen::Isometry3d& pose = c.pose;
+    const Eigen::Vector3d& com = c.com;
+    const double rho = c.rho, g = c.g, time = c.time, flatH = f.flatH;
+    const bool flat = f.flat;
+    buoyancy::HydrostaticsResult& h = f.h;
     const buoyancy::IntegrationMethod& method = m_shape->getIntegrationMethod();
-    bool onDevice = false;  // h came from the world's device backend
-    if (m_settings.buoyancyEnabled && !predicted) {
+    f.onDevice = false;  // h came from the world's device backend
+    if (m_settings.buoyancyEnabled && !f.predicted) {
         try {  // never let an exception escape into Bullet's stepSimulation
-            if (straddling) {
+            if (c.straddling) {
                 h = buoyancy::regionHydrostatics(m_shape->getMesh(), pose, m_regionsReached.data(),
                                                  m_regionsReached.size(), time, g, com);
             } else if (flat && m_shape->getSphereRadius() > 0 && !m_deformable) {
@@ -863,29 +962,35 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
                 h = buoyancy::capsuleHydrostatics(pose.translation(), pose.linear().col(m_shape->getCapsuleAxis()),
                                                   m_shape->getCapsuleHalfHeight(), m_shape->getCapsuleRadius(), flatH,
                                                   rho, g, com);
-            } else if (flat && bc.y() + br <= flatH && !m_deformable) {
+            } else if (flat && c.bc.y() + c.br <= flatH && !m_deformable) {
                 h = submergedClosedForm(pose, rho, g, com);  // whole body under flat water (design.md 2.5)
             } else {
                 btBuoyancyDeviceBackend* dev = method.deviceBatched ? m_world->getDeviceBackend() : nullptr;
                 if (dev && dev->hydrostatics(*this, pose, com, h))
-                    onDevice = true;
+                    f.onDevice = true;
                 else
                     h = method.evaluate(m_shape->getGeometry(getSamplesInUse()), pose,
-                                        {*water, time, rho, g, com, patch, &m_ws, &m_waterCache});
+                                        {*c.water, time, rho, g, com, f.patch, &m_ws, &m_waterCache});
             }
         } catch (const std::exception&) {
             ++m_rejected;
             m_lod.clear();
-            return;
+            return false;
         }
     }
+    return true;
+}
 
+void btBuoyancyAction::addedMassAndWaterForce(const SubstepContext& c, SubstepForces& f) {
+    const buoyancy::HydrostaticsResult& h = f.h;
+    const double rho = c.rho;
     // Added mass (design.md 2.7) on the linear motion, per axis of the water frame (heave along up, the rest across
     // it): (m + m_a) a = F − m g. Bullet already applies −g·dt, so the impulse is J = m/(m + m_a)·(F + m_a g_up)·dt.
-    const double m = 1.0 / double(m_body->getInvMass());
-    const Eigen::Vector3d ma = addedMassOf(h, rho);
-    const Eigen::Vector3d meff = Eigen::Vector3d::Constant(m) + ma;
-    const Eigen::Vector3d gravityAcc = frame.toWaterVector(toEigen(m_body->getGravity()));
+    f.m = 1.0 / double(m_body->getInvMass());
+    f.ma = addedMassOf(h, rho);
+    const Eigen::Vector3d& ma = f.ma;
+    f.meff = Eigen::Vector3d::Constant(f.m) + ma;
+    f.gravityAcc = c.frame->toWaterVector(toEigen(m_body->getGravity()));
 
     // The water's acceleration Du/Dt (design.md 2.7, "The water's acceleration"), at the centre of buoyancy, one
     // query per substep, only under water that changes over time: the added mass acts on the acceleration relative
@@ -894,60 +999,79 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // kick (scaled by m/(m + m_a) below); drag is evaluated without it (dragEvaluationVelocity).
     const btWaterAccelerationForce accelerationModel = m_settings.waterAcceleration;
     const bool froudeKrylov = accelerationModel == btWaterAccelerationForce::AddedMassAndFroudeKrylov &&
-                              m_settings.buoyancyEnabled && !straddling;
-    Eigen::Vector3d waterForce = Eigen::Vector3d::Zero();     // m_a Du/Dt [+ ρ V_sub Du/Dt], N
-    Eigen::Vector3d replacedPressure = Eigen::Vector3d::Zero(); // [F_p − ρ g V_sub ŷ], N
-    bool waterForceOn = false;
+                              m_settings.buoyancyEnabled && !c.straddling;
+    f.waterForce = Eigen::Vector3d::Zero();     // m_a Du/Dt [+ ρ V_sub Du/Dt], N
+    f.replacedPressure = Eigen::Vector3d::Zero(); // [F_p − ρ g V_sub ŷ], N
+    f.waterForceOn = false;
     if (accelerationModel != btWaterAccelerationForce::None && (ma.y() > 0 || froudeKrylov) && h.submerged_volume > 0 &&
-        water->isTimeVarying()) {
+        c.water->isTimeVarying()) {
         const Eigen::Vector3d& cb = h.centre_of_buoyancy;
         double du[3] = {0, 0, 0};
-        water->accelerations(&cb.x(), &cb.y(), &cb.z(), 1, time, &du[0], &du[1], &du[2]);
+        c.water->accelerations(&cb.x(), &cb.y(), &cb.z(), 1, c.time, &du[0], &du[1], &du[2]);
         const Eigen::Vector3d acceleration(du[0], du[1], du[2]);
         if (acceleration.allFinite() && cb.allFinite()) {
-            waterForce = ma.cwiseProduct(acceleration);
+            f.waterForce = ma.cwiseProduct(acceleration);
             if (froudeKrylov) {
                 const double displaced = rho * h.submerged_volume;  // ρ V_sub, kg
-                waterForce += displaced * acceleration;
-                replacedPressure = h.force - Eigen::Vector3d(0.0, displaced * g, 0.0);
+                f.waterForce += displaced * acceleration;
+                f.replacedPressure = h.force - Eigen::Vector3d(0.0, displaced * c.g, 0.0);
             }
-            waterForceOn = true;
+            f.waterForceOn = true;
         }
     }
+}
 
+void btBuoyancyAction::evaluateDrag(const SubstepContext& c, SubstepForces& f) {
+    const buoyancy::HydrostaticsResult& h = f.h;
+    Eigen::Vector3d& v = f.v;
+    Eigen::Vector3d& w = f.w;
     // Drag is evaluated at the velocity the next substep will integrate: this substep's hydrostatic kick
     // plus the gravity kick Bullet applies next. At rest in equilibrium that is exactly 0, so drag cannot
     // shift the draft (with the bare body velocity, −g·dt at rest, linear damping would sink it by b·g·dt/g).
-    Eigen::Vector3d v, w;
-    dragEvaluationVelocity(h, dt, v, w);
+    dragEvaluationVelocity(h, c.dt, v, w);
     // Linear damping (design.md 2.6): the radiation damping faded by the depth of the body's top, plus the viscous.
-    m_linearDamping = dragOn ? linearDampingAt(h, lo - (bc.y() + br)) : 0.0;
-    Eigen::Vector3d dragF = Eigen::Vector3d::Zero(), dragT = Eigen::Vector3d::Zero(), uMean = Eigen::Vector3d::Zero();
-    double linearPower = 0;
-    bool dragComputed = false;  // linearPower is this substep's (not an extrapolated drag)
-    if (predicted && dragOn && m_lod.dragFollows(v, w, m_lastMeanWaterVelocity, prediction, g)) {
+    m_linearDamping = f.dragOn ? linearDampingAt(h, c.lo - (c.bc.y() + c.br)) : 0.0;
+    f.dragF = Eigen::Vector3d::Zero();
+    f.dragT = Eigen::Vector3d::Zero();
+    f.uMean = Eigen::Vector3d::Zero();
+    f.linearPower = 0;
+    f.dragComputed = false;  // linearPower is this substep's (not an extrapolated drag)
+    if (f.predicted && f.dragOn && m_lod.dragFollows(v, w, m_lastMeanWaterVelocity, f.prediction, c.g)) {
         // Temporal level of detail: the extrapolated drag, while the motion follows the extrapolated one.
-        dragF = prediction.dragForce;
-        dragT = prediction.dragTorque;
-        uMean = m_lastMeanWaterVelocity;
-    } else if (dragOn) {
-        if (!(onDevice && m_world->getDeviceBackend()->drag(*this, com, v, w, dragF, dragT, uMean, linearPower)))
-            computeDrag(pose, dragPatch, com, v, w, rho, time, dragF, dragT, uMean, linearPower, predicted);
-        dragComputed = true;
+        f.dragF = f.prediction.dragForce;
+        f.dragT = f.prediction.dragTorque;
+        f.uMean = m_lastMeanWaterVelocity;
+    } else if (f.dragOn) {
+        if (!(f.onDevice &&
+              m_world->getDeviceBackend()->drag(*this, c.com, v, w, f.dragF, f.dragT, f.uMean, f.linearPower)))
+            computeDrag(c.pose, f.dragPatch, c.com, v, w, c.rho, c.time, f.dragF, f.dragT, f.uMean, f.linearPower,
+                        f.predicted);
+        f.dragComputed = true;
     }
-    if (!predicted) m_lastMeanWaterVelocity = uMean;
-    if (evaluationSubstep) {
-        btHydrostaticsSnapshot exact;
-        exact.hydrostatics = h;
-        exact.com = com;
-        exact.rotation = pose.linear();
-        exact.dragForce = dragF;
-        exact.dragTorque = dragT;
-        exact.linearVelocity = v;
-        exact.angularVelocity = w;
-        m_lod.record(lodStep, exact, meff.y());  // the heave's
-    }
+    if (!f.predicted) m_lastMeanWaterVelocity = f.uMean;
+}
 
+void btBuoyancyAction::recordTemporalLevelOfDetail(const SubstepContext& c, const SubstepForces& f) {
+    if (f.evaluationSubstep) {
+        btHydrostaticsSnapshot exact;
+        exact.hydrostatics = f.h;
+        exact.com = c.com;
+        exact.rotation = c.pose.linear();
+        exact.dragForce = f.dragF;
+        exact.dragTorque = f.dragT;
+        exact.linearVelocity = f.v;
+        exact.angularVelocity = f.w;
+        m_lod.record(f.lodStep, exact, f.meff.y());  // the heave's
+    }
+}
+
+void btBuoyancyAction::implicitDragScale(const SubstepContext& c, SubstepForces& f) {
+    const double dt = c.dt;
+    const Eigen::Vector3d& v = f.v;
+    const Eigen::Vector3d& w = f.w;
+    const Eigen::Vector3d& meff = f.meff;
+    Eigen::Vector3d& dragF = f.dragF;
+    Eigen::Vector3d& dragT = f.dragT;
     // Drag solved at the end-of-step velocity (design.md 2.6, "Implicit drag"): the impulse (J, L) is scaled by s so
     // that the velocity after it is the one the drag is evaluated at, as far as the drag's direction stays that of
     // the explicit one. In the mass metric ⟨x,y⟩ = m_eff x_v·y_v + x_ω·I y_ω, with a = −⟨Δ,V⟩/|V|² the explicit
@@ -958,15 +1082,15 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     // at any dt. The second bound s ≤ a|V|²/|Δ|² keeps |V'|² ≤ |V|²(1 − s a) when Δ is not parallel to V: the drag
     // never adds relative kinetic energy nor reverses the relative motion.
     double sLinear = 1.0, sAngular = 1.0;
-    if (dragOn) {
+    if (f.dragOn) {
         const Eigen::Vector3d J = dragF * dt, L = dragT * dt;
-        const Eigen::Vector3d vr = v - uMean;
+        const Eigen::Vector3d vr = v - f.uMean;
         const btMatrix3x3& basis = m_body->getWorldTransform().getBasis();
         const Eigen::Vector3d invI = toEigen(m_body->getInvInertiaDiagLocal());
         Eigen::Matrix3d R;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) R(i, j) = double(basis[i][j]);
-        if (!frame.isIdentity()) R = frame.rotation().transpose() * R;  // body → water axes, as w and L
+        if (!c.frame->isIdentity()) R = c.frame->rotation().transpose() * R;  // body → water axes, as w and L
         const Eigen::Vector3d wl = R.transpose() * w, Ll = R.transpose() * L;
         double rotE = 0, rotD = 0;
         for (int k = 0; k < 3; ++k) {
@@ -975,7 +1099,7 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
         }
         const double linE = meff.dot(vr.cwiseProduct(vr)), linD = J.cwiseProduct(J).dot(meff.cwiseInverse());
         const double power = dragF.dot(vr) + dragT.dot(w);  // W, < 0 when the drag removes energy
-        if (dragComputed) m_linearShare = power < 0 ? std::min(std::max(linearPower / power, 0.0), 1.0) : 0.0;
+        if (f.dragComputed) m_linearShare = power < 0 ? std::min(std::max(f.linearPower / power, 0.0), 1.0) : 0.0;
         // The scale for a block with energy V2 (in the metric), drag change D2 and removed fraction a.
         const double share = m_linearShare;
         const auto implicitScale = [share](double a, double V2, double D2) {
@@ -995,48 +1119,64 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     }
     dragF *= sLinear;
     dragT *= sAngular;
+}
 
+void btBuoyancyAction::computeImpulses(const SubstepContext& c, SubstepForces& f) {
+    const buoyancy::HydrostaticsResult& h = f.h;
+    const Eigen::Vector3d& ma = f.ma;
+    const double dt = c.dt;
     // Priming: the body's velocity is meant as the velocity after every kick at its current pose, but in
     // the first substep after creation or wake-up Bullet applied gravity (and integrated) with no buoyancy
     // kick for the starting pose. Give that missed hydrostatic kick once (evaluated at the current pose),
     // else a neutrally buoyant body keeps the −g·dt it got and drifts (design.md 3, symplectic Euler).
     const double prime = m_needsPrime ? 2.0 : 1.0;
-    Eigen::Vector3d linearForce = prime * (h.force - ma.cwiseProduct(gravityAcc)) + dragF;
+    Eigen::Vector3d linearForce = prime * (h.force - ma.cwiseProduct(f.gravityAcc)) + f.dragF;
     // A heave added mass that grew since the last substep (a body entering the water, a waterplane widening): the
     // momentum form d/dt((m + m_a) v) = F keeps (m + m_a) v relative to the water across the change (von Kármán's
     // water entry, design.md 2.7), a force −Δm_a v_rel / dt along up; a shrinking one gives nothing back. Without it a
     // light body meeting a large added mass keeps its speed and gains the energy ½ Δm_a v². Not at a priming substep
     // (a body placed in the water, or waking up: its water moves with it).
     if (!m_needsPrime && ma.y() > m_result.addedMass) {
-        const double relative = frame.toWaterVector(toEigen(m_body->getLinearVelocity())).y() - uMean.y();
+        const double relative = c.frame->toWaterVector(toEigen(m_body->getLinearVelocity())).y() - f.uMean.y();
         linearForce.y() -= (ma.y() - m_result.addedMass) * relative / dt;
     }
     // (Flat or steady water: not even a zero added. The priming gives the replaced pressure's kick twice too.)
-    if (waterForceOn) linearForce += waterForce - prime * replacedPressure;
-    const Eigen::Vector3d linearImpulse = (m * linearForce * dt).cwiseQuotient(meff);
-    const Eigen::Vector3d angularImpulse = (prime * h.torque + dragT) * dt;
+    if (f.waterForceOn) linearForce += f.waterForce - prime * f.replacedPressure;
+    f.linearImpulse = (f.m * linearForce * dt).cwiseQuotient(f.meff);
+    f.angularImpulse = (prime * h.torque + f.dragT) * dt;
+}
 
+void btBuoyancyAction::recordResult(const SubstepContext& c, const SubstepForces& f) {
+    const buoyancy::HydrostaticsResult& h = f.h;
+    const btWaterFrame& frame = *c.frame;
     // Back to the world (the result and the impulses are world-frame).
     m_result.submergedVolume = h.submerged_volume;
     m_result.centreOfBuoyancy = toBullet(frame.toWorldPoint(h.centre_of_buoyancy));
     m_result.buoyancyForce = toBullet(frame.toWorldVector(h.force));
     m_result.buoyancyTorque = toBullet(frame.toWorldVector(h.torque));
-    m_result.dragForce = toBullet(frame.toWorldVector(dragF));
-    m_result.dragTorque = toBullet(frame.toWorldVector(dragT));
+    m_result.dragForce = toBullet(frame.toWorldVector(f.dragF));
+    m_result.dragTorque = toBullet(frame.toWorldVector(f.dragT));
     m_result.wettedArea = h.wetted_area;
     m_result.waterlineArea = h.waterline_area;
-    m_result.addedMass = ma.y();
-    m_result.time = time;
-    m_result.predicted = predicted;
+    m_result.addedMass = f.ma.y();
+    m_result.time = c.time;
+    m_result.predicted = f.predicted;
     {
         const double bodyVolume = m_deformable ? m_deformable->getVolume() : m_shape->getVolume();
-        const double f = bodyVolume > 0 ? h.submerged_volume / bodyVolume : 0.0;
-        if (std::isfinite(f)) m_submergedFraction = std::min(std::max(f, 0.0), 1.0);
+        const double fraction = bodyVolume > 0 ? h.submerged_volume / bodyVolume : 0.0;
+        if (std::isfinite(fraction)) m_submergedFraction = std::min(std::max(fraction, 0.0), 1.0);
     }
+}
+
+void btBuoyancyAction::decideImpulseAndSleep(const SubstepContext& c, const SubstepForces& f) {
+    const buoyancy::HydrostaticsResult& h = f.h;
+    const btWaterFrame& frame = *c.frame;
+    const Eigen::Vector3d& linearImpulse = f.linearImpulse;
+    const Eigen::Vector3d& angularImpulse = f.angularImpulse;
     // Never write NaN/Inf into a body (design.md 3): checked after rounding to btScalar (a finite double
     // can overflow a float) and on the velocities the impulses would give.
     btVector3 J = toBullet(frame.toWorldVector(linearImpulse)), L = toBullet(frame.toWorldVector(angularImpulse));
-    if (m_marine.enabled && !marineImpulse(h, dt, J, L)) {  // Fossen's model (design.md 2.10)
+    if (m_marine.enabled && !marineImpulse(h, c.dt, J, L)) {  // Fossen's model (design.md 2.10)
         ++m_rejected;
         m_lod.clear();
         return;
@@ -1052,8 +1192,9 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     }
     // Sleeping (design.md 3): at rest when the energy above the hydrostatic equilibrium is a small fraction of
     // m g L, whatever Bullet's velocity thresholds are; Bullet then counts down to sleep as usual.
-    const bool atRest = m_hasLastCom && energyAboveEquilibrium(h, com, dt, m, gravityAcc) < restEnergy(h, m, gravityAcc);
-    m_lastCom = com;
+    const bool atRest =
+        m_hasLastCom && energyAboveEquilibrium(h, c.com, c.dt, f.m, f.gravityAcc) < restEnergy(h, f.m, f.gravityAcc);
+    m_lastCom = c.com;
     m_hasLastCom = true;
     const btScalar open = atRest ? btScalar(1e6) : btScalar(0);
     m_pendingSleep = true;

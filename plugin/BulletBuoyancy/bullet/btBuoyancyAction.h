@@ -235,9 +235,85 @@ private:
     /// Everything of a substep that reads the body and writes only this action's state: the water, hydrostatics,
     /// drag, the temporal level of detail and the decisions; what it would write into the body is kept for
     /// applyPending. Safe to run for different bodies at once. dt: substep, s (> 0, finite).
+    /// A list of phases, in this order; the gates (returning false) end the substep with their own effects:
+    /// startEvaluation, readWorld, readBodyPose, chooseWater, bodyReachesWater (gates), then predictHydrostatics,
+    /// buildWaterPatch, evaluateHydrostatics (a gate too), addedMassAndWaterForce, evaluateDrag,
+    /// recordTemporalLevelOfDetail, implicitDragScale, computeImpulses, recordResult, decideImpulseAndSleep.
     void evaluate(const btCollisionWorld* collisionWorld, double dt);
     /// Write what evaluate decided into the body (activation, sleeping thresholds, impulses), at the action's turn.
     void applyPending();
+
+    ///@name The phases of evaluate (btBuoyancyAction.cpp), each called once per substep, in the order listed
+    /// A gate returns false when the substep ends there (its effects written, nothing applied); true: go on.
+    /// Everything they hand on is in the world's water frame (btBuoyancyWorld::getWaterFrame).
+    ///@{
+    /// What the gates learn about the body and its water this substep (defined in btBuoyancyAction.cpp).
+    struct SubstepContext;
+    /// What the phases of a body the water reaches hand on: hydrostatics, added mass, drag and impulses (defined in
+    /// btBuoyancyAction.cpp; built only once the body is wet).
+    struct SubstepForces;
+    /// Marks the substep evaluated and clears what the last one left pending (m_evaluatedSubstep, the pending flags,
+    /// m_result.applied and .status); debug builds check that the body is in `collisionWorld`.
+    void startEvaluation(const btCollisionWorld* collisionWorld);
+    /// Gate. Reads the world's water (c.water, c.bounded) and whether changing water may reach the body (c.waves).
+    /// False, doing nothing, for a body out of its world, a static one or a world without water; false with the
+    /// gravity status in m_result (history forgotten, the body's sleeping thresholds pending) when gravity is not
+    /// along the water's down axis; false with m_needsPrime set and m_lod cleared for a sleeping body in calm water.
+    bool readWorld(SubstepContext& c);
+    /// Gate. Reads the water's time (s), gravity (m/s²) and frame, and the body's pose, centre of mass and bounding
+    /// sphere in that frame (c.pose, c.com, c.bc in m, c.br in m); a new frame clears the records and warm starts.
+    /// False, counting a rejected substep and clearing m_lod, for a pose or centre of mass that is not finite.
+    bool readBodyPose(SubstepContext& c);
+    /// Gate. The water the body is in (design.md 2.9): the unbounded water or the water body chosen
+    /// (chooseWaterBody), written to c.water, c.straddling, c.rho (kg/m³), m_activeWater, m_activeDensity,
+    /// m_straddling. With water bodies, false (m_needsPrime set, m_lod cleared) for a sleeping body that only calm
+    /// water reaches; c.waves then counts only the waters reached.
+    bool chooseWater(SubstepContext& c);
+    /// Of chooseWater, with water bodies: the water body nearest, whether the body straddles several (then
+    /// m_regionsReached and the widest height bounds c.lo, c.hi, m), and resets the records and warm starts when
+    /// the water body changed (m_activeWaterBody). Out of line: the single-water path's code stays as it was laid out.
+    void chooseWaterBody(SubstepContext& c);
+    /// Gate. The water's height bounds over the footprint (c.lo, c.hi, m). False for a dry body (no water, or the
+    /// bounding sphere above c.hi): the dry result, the body's own sleeping thresholds pending, m_lod and the last
+    /// centre of mass forgotten, submerged fraction 0. True: the body is woken (pending) when the water changes.
+    bool bodyReachesWater(SubstepContext& c);
+    /// Temporal level of detail (settings.hydrostaticsInterval): begins m_lod's substep (f.lodStep), and either
+    /// marks an exact evaluation substep (f.evaluationSubstep) or predicts the hydrostatics and drag (f.predicted,
+    /// f.prediction, f.h); otherwise f.h is empty, for evaluateHydrostatics.
+    void predictHydrostatics(const SubstepContext& c, SubstepForces& f);
+    /// Reads whether the water is flat (f.flat, f.flatH in m) and whether any drag is on (f.dragOn); builds the wave
+    /// patch over the footprint when it saves queries (f.patch for the hydrostatics, f.dragPatch for the drag,
+    /// the calling thread's scratch) and tells m_lod the water's slope bound (unless predicted).
+    void buildWaterPatch(const SubstepContext& c, SubstepForces& f);
+    /// Gate. Unless predicted (or buoyancy is off): f.h by the method registry, a closed form in flat water, the
+    /// regions of a straddling body or the device backend (f.onDevice); torque about c.com. False, counting a
+    /// rejected substep and clearing m_lod, when the evaluation threw.
+    bool evaluateHydrostatics(const SubstepContext& c, SubstepForces& f);
+    /// Added mass (design.md 2.7): f.m, f.ma, f.meff (kg), the body's gravity f.gravityAcc (m/s²), and the force of
+    /// the water's acceleration under changing water (f.waterForce, f.replacedPressure in N, f.waterForceOn).
+    void addedMassAndWaterForce(const SubstepContext& c, SubstepForces& f);
+    /// Drag (design.md 2.6): the evaluation velocities f.v (m/s), f.w (rad/s), m_linearDamping, and f.dragF (N),
+    /// f.dragT (N·m), f.uMean (m/s), f.linearPower (W): extrapolated while the motion follows the prediction,
+    /// otherwise computed (device backend or computeDrag); m_lastMeanWaterVelocity unless predicted.
+    void evaluateDrag(const SubstepContext& c, SubstepForces& f);
+    /// At an exact evaluation substep of the temporal level of detail: records f.h, the drag and the velocities
+    /// into m_lod.
+    void recordTemporalLevelOfDetail(const SubstepContext& c, const SubstepForces& f);
+    /// Implicit drag (design.md 2.6): scales f.dragF and f.dragT so the velocity after the impulse is the one the
+    /// drag was evaluated at; updates m_linearShare from a computed drag.
+    void implicitDragScale(const SubstepContext& c, SubstepForces& f);
+    /// The impulses of the substep, f.linearImpulse (N·s) and f.angularImpulse (N·m·s), water frame: hydrostatics
+    /// (twice when priming), added mass and its growth (reads m_result.addedMass, the last substep's), the water's
+    /// acceleration and the drag.
+    void computeImpulses(const SubstepContext& c, SubstepForces& f);
+    /// Writes m_result (world frame; not yet .applied nor the impulses, which applyPending writes) and
+    /// m_submergedFraction.
+    void recordResult(const SubstepContext& c, const SubstepForces& f);
+    /// The impulses in the world frame (through the marine model when enabled); rejects one that is not finite
+    /// (counted, m_lod cleared); otherwise decides rest (m_lastCom) and leaves the sleeping thresholds and the
+    /// impulses pending for applyPending.
+    void decideImpulseAndSleep(const SubstepContext& c, const SubstepForces& f);
+    ///@}
     /// The drag sum at velocities (v, w) with linear damping m_linearDamping; linearPower: the linear damping's part
     /// of its power, W (≤ 0).
     void computeDrag(const Eigen::Isometry3d& pose, const buoyancy::WaterPatch* patch, const Eigen::Vector3d& com,
