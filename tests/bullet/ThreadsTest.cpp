@@ -222,6 +222,19 @@ std::vector<unsigned char> runFleet(FleetOptions o, int frames, int* batchSize =
     return fleet.fingerprint();
 }
 
+/// The fleet of `o` batched on 3 and on 1 thread gives the bytes of the sequential order (batching off), `frames`
+/// frames on.
+void checkBatchedAsSequential(FleetOptions o, int frames) {
+    o.batching = true;
+    o.threads = 3;
+    const auto batched = runFleet(o, frames);
+    o.threads = 1;
+    const auto batchedOne = runFleet(o, frames);
+    o.batching = false;
+    const auto sequential = runFleet(o, frames);
+    CHECK(batched == sequential);
+    CHECK(batchedOne == sequential);
+}
 }  // namespace
 
 TEST_CASE("threads: bodies bit-identical for 1, 2 and 4 threads, across runs and against the sequential order",
@@ -256,15 +269,9 @@ TEST_CASE("threads: flooding and time-varying mass give the sequential order's r
     FleetOptions o;
     o.flooding = true;
     o.timeVaryingMass = true;
-    o.threads = 3;
     const int frames = 60;
-    const auto batched = runFleet(o, frames);
-    o.threads = 1;
-    const auto batchedOne = runFleet(o, frames);
+    checkBatchedAsSequential(o, frames);
     o.batching = false;
-    const auto sequential = runFleet(o, frames);
-    CHECK(batched == sequential);
-    CHECK(batchedOne == sequential);
     // Water got in (the flooding is part of what is compared), and the flooding actions flowed in the world's batch
     // (8 of them, every third body's: on 3 threads) or at their own turns (batching off).
     Fleet f(o);
@@ -294,15 +301,7 @@ TEST_CASE("threads: deformable bodies re-baked on the worker threads give the se
     // batch, on the worker threads. Batched on 1 and 3 threads == each action at its own turn.
     FleetOptions o;
     o.deformable = true;
-    o.threads = 3;
-    const int frames = 60;
-    const auto batched = runFleet(o, frames);
-    o.threads = 1;
-    const auto batchedOne = runFleet(o, frames);
-    o.batching = false;
-    const auto sequential = runFleet(o, frames);
-    CHECK(batched == sequential);
-    CHECK(batchedOne == sequential);
+    checkBatchedAsSequential(o, 60);
     // The breathing is part of what is compared: a deformable body's submerged volume follows its size. Its samples
     // enclose the scaled mesh's volume (the re-bake happened): the rest mesh's volume × scale³.
     o.batching = true;
