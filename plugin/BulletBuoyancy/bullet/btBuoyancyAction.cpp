@@ -64,8 +64,19 @@ std::shared_ptr<const buoyancy::DragClusters> sharedDragClusters(const std::shar
 btBuoyancyAction::btBuoyancyAction(btRigidBody* body, std::shared_ptr<const btBuoyancyShape> shape,
                                    btBuoyancyWorld* world, const btBuoyancySettings& settings,
                                    const btTransform& meshInCom)
-    : m_body(body), m_shape(std::move(shape)), m_world(world), m_settings(settings), m_meshInCom(meshInCom) {
-    if (!m_body) throw std::invalid_argument("body: null");
+    : btBuoyancyAction(body, nullptr, std::move(shape), world, settings, meshInCom) {}
+
+btBuoyancyAction::btBuoyancyAction(btBuoyancyBody& body, std::shared_ptr<const btBuoyancyShape> shape,
+                                   btBuoyancyWorld* world, const btBuoyancySettings& settings,
+                                   const btTransform& meshInCom)
+    : btBuoyancyAction(nullptr, &body, std::move(shape), world, settings, meshInCom) {}
+
+btBuoyancyAction::btBuoyancyAction(btRigidBody* rigid, btBuoyancyBody* body, std::shared_ptr<const btBuoyancyShape> shape,
+                                   btBuoyancyWorld* world, const btBuoyancySettings& settings,
+                                   const btTransform& meshInCom)
+    : m_rigidBody(rigid), m_body(body ? body : &m_rigidBody), m_shape(std::move(shape)), m_world(world),
+      m_settings(settings), m_meshInCom(meshInCom) {
+    if (!rigid && !body) throw std::invalid_argument("body: null");
     if (!m_shape) throw std::invalid_argument("shape: null");
     if (!m_world) throw std::invalid_argument("world: null");
     m_settings.validate();
@@ -306,7 +317,6 @@ btBuoyancyMassResult btBuoyancyAction::setBodyMassFromShape(double density) {
     if (const std::string range = btBuoyancyCheckInertiaRange(r.localInertia, "setBodyMassFromShape"); !range.empty())
         throw std::invalid_argument(range);
     m_body->setMassProps(btScalar(mass), r.localInertia);
-    m_body->updateInertiaTensor();
     m_body->activate(true);
     return r;
 }
@@ -522,8 +532,8 @@ void btBuoyancyAction::dragEvaluationVelocity(const buoyancy::HydrostaticsResult
 
 bool btBuoyancyAction::deviceRecord(const btWaterSurface& water, double time, btBuoyancyDeviceRecord& out) const {
     // The gating of evaluate: the bodies it would compute with the sampled method.
-    const btRigidBody* b = m_body;
-    if (!b->getBroadphaseHandle() || b->getInvMass() == btScalar(0)) return false;
+    const btBuoyancyBody* b = m_body;
+    if (!b->isInWorld() || b->getInvMass() == btScalar(0)) return false;
     if (!b->isActive() && !water.isTimeVarying()) return false;
     if (!m_shape->getIntegrationMethod().deviceBatched || !m_settings.buoyancyEnabled) return false;
     // In the water frame, as evaluate (which maps the results back).
@@ -588,22 +598,21 @@ void btBuoyancyWorldPrefetch(const btBuoyancyAction& action, bool referenced) {
         return;
     }
     // Reads the action's pointers: called once its own lines have arrived (a stage later).
-    lines(action.m_body, sizeof(btRigidBody));
+    if (const btRigidBody* rigid = action.m_rigidBody.getRigidBody()) lines(rigid, sizeof(btRigidBody));
     if (action.m_owner) lines(&action.m_owner->getMeshInComFrame(), sizeof(btTransform));
 }
 
 void btBuoyancyAction::applyPending() {
     m_result.linearImpulse = m_result.angularImpulse = btVector3(0, 0, 0);
-    if (m_pendingActivate) m_body->activate();
+    if (m_pendingActivate) m_body->activate(false);
     if (m_pendingSleep) m_body->setSleepingThresholds(m_pendingLinearSleep, m_pendingAngularSleep);
     if (m_pendingImpulse) {
-        m_body->applyCentralImpulse(m_pendingJ);
-        m_body->applyTorqueImpulse(m_pendingL);
+        m_body->applyCentralImpulses(m_pendingJ, m_pendingL);
         m_result.linearImpulse = m_pendingJ;
         m_result.angularImpulse = m_pendingL;
         m_result.applied = true;
         m_needsPrime = false;
-        BT_BUOYANCY_CHECK_BODY(*m_body);
+        if (const btRigidBody* rigid = m_body->getRigidBody()) BT_BUOYANCY_CHECK_BODY(*rigid);
     }
     m_pendingActivate = m_pendingSleep = m_pendingImpulse = false;
     // Water events (btBuoyancyEvents.h): decided and delivered here, at the action's turn, never on a worker thread.
@@ -689,8 +698,9 @@ void btBuoyancyAction::startEvaluation(const btCollisionWorld* collisionWorld) {
 #ifndef NDEBUG
     // Misuse check: an action whose body is in another world (a removed body has no broadphase handle and
     // is skipped below).
-    if (collisionWorld && m_body->getBroadphaseHandle() &&
-        collisionWorld->getCollisionObjectArray().findLinearSearch(m_body) ==
+    const btCollisionObject* object = m_body->getCollisionObject();
+    if (collisionWorld && object && m_body->isInWorld() &&
+        collisionWorld->getCollisionObjectArray().findLinearSearch(const_cast<btCollisionObject*>(object)) ==
                               collisionWorld->getCollisionObjectArray().size())
         btAssert(!"btBuoyancyAction: its body is not in the world; remove the action before the body");
 #else
@@ -701,7 +711,7 @@ void btBuoyancyAction::startEvaluation(const btCollisionWorld* collisionWorld) {
 
 bool btBuoyancyAction::readWorld(SubstepContext& c) {
     // A body removed from its world while this action stays in it: do nothing until it is back.
-    if (!m_body->getBroadphaseHandle() && !m_outsideWorld) return false;
+    if (!m_body->isInWorld() && !m_outsideWorld) return false;
     // The unbounded water, or water bodies (btBuoyancyWorld::addWaterBody): chosen below, once the pose is known.
     c.water = m_world->getWater();
     c.bounded = !m_world->getWaterBodies().empty();

@@ -10,6 +10,7 @@
 /// Removing the action from the world is safe at any time. Deleting the body while its action is still in
 /// the world is a misuse (checked in debug builds: the body must be in the world the action runs in).
 
+#include <BulletBuoyancy/bullet/btBuoyancyBody.h>
 #include <BulletBuoyancy/bullet/btBuoyancyDeviceBackend.h>
 #include <BulletBuoyancy/bullet/btBuoyancySettings.h>
 #include <BulletBuoyancy/bullet/btBuoyancyShape.h>
@@ -98,6 +99,13 @@ public:
     /// the body's centre-of-mass frame, where Bullet puts the shape), the mass and inertia are the body's own.
     /// @throws std::invalid_argument naming the collision shape's type when it is not supported, or a bad setting
     btBuoyancyAction(btRigidBody* body, btBuoyancyWorld* world, const btBuoyancySettings& settings = btBuoyancySettings());
+    /// A body of another type (btBuoyancyBody.h: a body of your own integrator, a part of an articulated body) whose
+    /// centre-of-mass frame holds the mesh at `meshInCom`; the action reads and writes it only through the interface.
+    /// @param body      the body (not owned; must outlive the action)
+    /// @throws std::invalid_argument as the constructor above
+    btBuoyancyAction(btBuoyancyBody& body, std::shared_ptr<const btBuoyancyShape> shape, btBuoyancyWorld* world,
+                     const btBuoyancySettings& settings = btBuoyancySettings(),
+                     const btTransform& meshInCom = btTransform::getIdentity());
     /// A body made by btBuoyantBody: its mesh frame follows updateMassProperties automatically.
     btBuoyancyAction(btBuoyantBody& body, btBuoyancyWorld* world, const btBuoyancySettings& settings = btBuoyancySettings());
     ~btBuoyancyAction() override;
@@ -125,8 +133,10 @@ public:
 
     /// Result of the last substep.
     const btBuoyancyResult& getLastResult() const { return m_result; }
-    /// The body.
-    btRigidBody* getRigidBody() const { return m_body; }
+    /// The Bullet rigid body, or nullptr when the action floats another body type (getBody).
+    btRigidBody* getRigidBody() const { return m_body->getRigidBody(); }
+    /// The body as the action reads and writes it (btBuoyancyBody.h).
+    btBuoyancyBody& getBody() const { return *m_body; }
     /// The shared buoyancy data.
     const std::shared_ptr<const btBuoyancyShape>& getShape() const { return m_shape; }
     /// Settings in use.
@@ -333,7 +343,12 @@ private:
     buoyancy::HydrostaticsResult submergedClosedForm(const Eigen::Isometry3d& pose, double rho, double g,
                                                      const Eigen::Vector3d& com) const;
 
-    btRigidBody* m_body;
+    /// Build on `body`, or on `rigid` (wrapped in m_rigidBody) when body is null.
+    btBuoyancyAction(btRigidBody* rigid, btBuoyancyBody* body, std::shared_ptr<const btBuoyancyShape> shape,
+                     btBuoyancyWorld* world, const btBuoyancySettings& settings, const btTransform& meshInCom);
+
+    btBuoyancyRigidBody m_rigidBody;  ///< the btRigidBody constructors' body (wraps nullptr otherwise)
+    btBuoyancyBody* m_body;           ///< the body read and written (&m_rigidBody, or the caller's)
     std::shared_ptr<const btBuoyancyShape> m_shape;
     btBuoyancyWorld* m_world;
     const btBuoyantBody* m_owner = nullptr;

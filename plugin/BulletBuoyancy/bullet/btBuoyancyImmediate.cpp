@@ -23,6 +23,14 @@ btBuoyancyImmediate::btBuoyancyImmediate(btRigidBody* body, std::shared_ptr<cons
     m_action->m_outsideWorld = true;
 }
 
+btBuoyancyImmediate::btBuoyancyImmediate(btBuoyancyBody& body, std::shared_ptr<const btBuoyancyShape> shape,
+                                         const btBuoyancySettings& settings, const btTransform& meshInCom)
+    : m_context(nullptr, 1000.0, 0.0) {
+    m_context.setBatching(false);
+    m_action = std::make_unique<btBuoyancyAction>(body, std::move(shape), &m_context, settings, meshInCom);
+    m_action->m_outsideWorld = true;
+}
+
 const btBuoyancyResult& btBuoyancyImmediate::applyBuoyancyImpulse(const btWaterSurface& water, const btVector3& gravity,
                                                                   double fluidDensity, double time, double dt) {
     const double gx = double(gravity.x()), gy = double(gravity.y()), gz = double(gravity.z());
@@ -33,8 +41,8 @@ const btBuoyancyResult& btBuoyancyImmediate::applyBuoyancyImpulse(const btWaterS
     m_context.setWater(&water);
     m_context.followGravity(gx, gy, gz);
     // The weight the loop applies: the added mass counts on it (the body's own gravity, as Bullet's world sets it).
-    btRigidBody* body = m_action->getRigidBody();
-    if (!(body->getGravity() == gravity)) body->setGravity(gravity);
+    // (Another body type's getGravity() is its own to keep equal to it.)
+    if (btRigidBody* body = m_action->getRigidBody(); body && !(body->getGravity() == gravity)) body->setGravity(gravity);
     // The action's substep advances the clock by dt to the end of the step: start it dt earlier.
     if (dt > 0 && std::isfinite(dt)) m_context.setTime(time - dt);
     m_action->updateAction(nullptr, btScalar(dt));

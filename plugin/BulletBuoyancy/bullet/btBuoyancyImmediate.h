@@ -42,6 +42,12 @@ public:
     btBuoyancyImmediate(btRigidBody* body, std::shared_ptr<const btBuoyancyShape> shape,
                         const btBuoyancySettings& settings = btBuoyancySettings(),
                         const btTransform& meshInCom = btTransform::getIdentity());
+    /// A body of another type (btBuoyancyBody.h) floating with `shape` held at `meshInCom` in its centre-of-mass frame.
+    /// Its getGravity() must return the gravity given to applyBuoyancyImpulse (the weight your loop applies).
+    /// @throws std::invalid_argument as btBuoyancyAction's constructor
+    btBuoyancyImmediate(btBuoyancyBody& body, std::shared_ptr<const btBuoyancyShape> shape,
+                        const btBuoyancySettings& settings = btBuoyancySettings(),
+                        const btTransform& meshInCom = btTransform::getIdentity());
     btBuoyancyImmediate(const btBuoyancyImmediate&) = delete;
     btBuoyancyImmediate& operator=(const btBuoyancyImmediate&) = delete;
 

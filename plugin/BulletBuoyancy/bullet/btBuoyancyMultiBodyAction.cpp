@@ -1,10 +1,11 @@
 #include <BulletBuoyancy/bullet/btBuoyancyMultiBodyAction.h>
 
+#include <BulletBuoyancy/bullet/btBuoyancyBody.h>
 #include <BulletBuoyancy/bullet/btBuoyancyImmediate.h>
+#include <BulletBuoyancy/bullet/btBuoyancyShape.h>
 #include <BulletBuoyancy/bullet/btBuoyancyState.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 
-#include <BulletDynamics/Dynamics/btRigidBody.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
@@ -12,12 +13,87 @@
 #include <stdexcept>
 #include <string>
 
-/// One floating part: its collider, a stand-in rigid body that mirrors its pose, velocity, mass and inertia for the
-/// shared per-body evaluation, and that evaluation's state.
+namespace {
+
+/// One part (the base or a link) of a multibody as a btBuoyancyBody: its collider's pose, its velocity at its centre of
+/// mass (Bullet's link frame) and its own mass and inertia, set by the action before each evaluation; the impulse it is
+/// given is kept for the action, which applies the parts' impulses through the chain's Jacobians. It has no force of
+/// its own waiting (the evaluation then starts from the velocity given) and never sleeps (the action skips a sleeping
+/// multibody).
+class btBuoyancyMultiBodyPart final : public btBuoyancyBody {
+public:
+    /// @param mass  kg (0: a fixed base); inertia: principal moments, kg m²
+    btBuoyancyMultiBodyPart(btScalar mass, const btVector3& inertia) {
+        m_invMass = mass != btScalar(0) ? btScalar(1) / mass : btScalar(0);
+        setInvInertia(inertia);
+    }
+    /// The part's state before its evaluation: pose of its centre-of-mass frame, world velocities, the weight per
+    /// unit mass.
+    void setState(const btTransform& pose, const btVector3& linearVelocity, const btVector3& angularVelocity,
+                  const btVector3& gravity) {
+        m_pose = pose;
+        m_v = linearVelocity;
+        m_w = angularVelocity;
+        m_gravity = gravity;
+        updateWorldInertia();
+    }
+
+    const btTransform& getWorldTransform() const override { return m_pose; }
+    const btVector3& getLinearVelocity() const override { return m_v; }
+    const btVector3& getAngularVelocity() const override { return m_w; }
+    btScalar getInvMass() const override { return m_invMass; }
+    const btVector3& getInvInertiaDiagLocal() const override { return m_invInertia; }
+    const btMatrix3x3& getInvInertiaTensorWorld() const override { return m_invInertiaWorld; }
+    const btVector3& getGravity() const override { return m_gravity; }
+    const btVector3& getLinearFactor() const override { return m_one; }
+    const btVector3& getAngularFactor() const override { return m_one; }
+    const btVector3& getTotalForce() const override { return m_zero; }
+    const btVector3& getTotalTorque() const override { return m_zero; }
+    bool isInWorld() const override { return true; }
+    bool isActive() const override { return true; }
+    /// Bullet's defaults for a rigid body (0.8 m/s, 1 rad/s).
+    btScalar getLinearSleepingThreshold() const override { return m_linearSleep; }
+    btScalar getAngularSleepingThreshold() const override { return m_angularSleep; }
+    /// Kept for the action (the multibody's velocities change only through its generalized impulse).
+    void applyCentralImpulses(const btVector3&, const btVector3&) override {}
+    void activate(bool) override {}
+    void setSleepingThresholds(btScalar linear, btScalar angular) override {
+        m_linearSleep = linear;
+        m_angularSleep = angular;
+    }
+    void setMassProps(btScalar mass, const btVector3& inertia) override {
+        m_invMass = mass != btScalar(0) ? btScalar(1) / mass : btScalar(0);
+        setInvInertia(inertia);
+        updateWorldInertia();
+    }
+
+private:
+    void setInvInertia(const btVector3& inertia) {
+        m_invInertia = btVector3(inertia.x() != btScalar(0) ? btScalar(1) / inertia.x() : btScalar(0),
+                                 inertia.y() != btScalar(0) ? btScalar(1) / inertia.y() : btScalar(0),
+                                 inertia.z() != btScalar(0) ? btScalar(1) / inertia.z() : btScalar(0));
+    }
+    void updateWorldInertia() {
+        // R diag(I⁻¹) Rᵀ, as btRigidBody::updateInertiaTensor.
+        m_invInertiaWorld = m_pose.getBasis().scaled(m_invInertia) * m_pose.getBasis().transpose();
+    }
+    btTransform m_pose = btTransform::getIdentity();
+    btVector3 m_v{0, 0, 0}, m_w{0, 0, 0}, m_gravity{0, 0, 0};
+    btScalar m_invMass = 0;
+    btVector3 m_invInertia{0, 0, 0};
+    btMatrix3x3 m_invInertiaWorld = btMatrix3x3::getIdentity();
+    btScalar m_linearSleep = btScalar(0.8), m_angularSleep = btScalar(1.0);
+    const btVector3 m_one{1, 1, 1}, m_zero{0, 0, 0};
+};
+
+}  // namespace
+
+/// One floating part: its collider, the part as a btBuoyancyBody and its evaluation's state.
 struct btBuoyancyMultiBodyAction::Part {
+    Part(btScalar mass, const btVector3& inertia) : body(mass, inertia) {}
     int link = -1;  ///< −1: the base
     btMultiBodyLinkCollider* collider = nullptr;
-    std::unique_ptr<btRigidBody> proxy;
+    btBuoyancyMultiBodyPart body;
     std::unique_ptr<btBuoyancyImmediate> buoyancy;
 };
 
@@ -39,16 +115,13 @@ btBuoyancyMultiBodyAction::btBuoyancyMultiBodyAction(btMultiBody* multiBody, btB
         if (!fixedPart && !(mass > 0))
             throw std::invalid_argument("btBuoyancyMultiBodyAction: " + name + " has mass " + std::to_string(mass) +
                                         " kg: a floating part needs a positive mass");
-        auto part = std::make_unique<Part>();
+        auto part = std::make_unique<Part>(btScalar(fixedPart ? 0.0 : mass), fixedPart ? btVector3(0, 0, 0) : inertia);
         part->link = link;
         part->collider = collider;
-        btRigidBody::btRigidBodyConstructionInfo info(btScalar(fixedPart ? 0.0 : mass), nullptr,
-                                                      collider->getCollisionShape(), fixedPart ? btVector3(0, 0, 0) : inertia);
-        info.m_startWorldTransform = collider->getWorldTransform();
-        part->proxy = std::make_unique<btRigidBody>(info);
-        part->proxy->setActivationState(DISABLE_DEACTIVATION);
         try {
-            part->buoyancy = std::make_unique<btBuoyancyImmediate>(part->proxy.get(), partSettings);
+            part->buoyancy = std::make_unique<btBuoyancyImmediate>(
+                part->body, btBuoyancyShape::fromCollisionShape(*collider->getCollisionShape(), partSettings),
+                partSettings);
         } catch (const std::invalid_argument& e) {
             throw std::invalid_argument("btBuoyancyMultiBodyAction: " + name + ": " + e.what());
         }
@@ -96,12 +169,9 @@ void btBuoyancyMultiBodyAction::updateAction(btCollisionWorld* collisionWorld, b
     m_jacobian.resize(dofs);
     bool any = false;
     for (const auto& part : m_parts) {
-        btRigidBody& proxy = *part->proxy;
         const btTransform& pose = part->collider->getWorldTransform();
-        proxy.setWorldTransform(pose);
-        proxy.setLinearVelocity(pose.getBasis() * m_velocity[part->link + 1]);
-        proxy.setAngularVelocity(pose.getBasis() * m_omega[part->link + 1]);
-        proxy.updateInertiaTensor();
+        part->body.setState(pose, pose.getBasis() * m_velocity[part->link + 1], pose.getBasis() * m_omega[part->link + 1],
+                            gravity);
         if (part->link < 0 && mb.hasFixedBase()) continue;  // a fixed base takes what it is given
         if (!part->buoyancy->getContext().isWaterFrameFixed() && m_world->isWaterFrameFixed())
             part->buoyancy->getContext().setWaterFrame(m_world->getWaterFrame());

@@ -19,7 +19,6 @@ class btBuoyancyImmediate;
 class btBuoyancyWorld;
 class btMultiBody;
 class btMultiBodyLinkCollider;
-class btRigidBody;
 
 /// Buoyancy and drag on every part (base and links with a collider) of one btMultiBody.
 ///
