@@ -13,6 +13,7 @@
 
 // The Bullet layer.
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
+#include <BulletBuoyancy/bullet/btBuoyancyBody.h>
 #include <BulletBuoyancy/bullet/btBuoyancyDeformable.h>
 #include <BulletBuoyancy/bullet/btBuoyancyEvents.h>
 #include <BulletBuoyancy/bullet/btBuoyancyImmediate.h>

@@ -106,9 +106,8 @@ struct btBuoyancySettings {
     int waterPatchNodes = 8;
     /// Patch resolution against the waves: the grid spacing is at most (shortest wavelength of the surface) / this,
     /// so a large body in short waves gets more nodes (btBuoyancyWaterPatchNodes; up to 64 per side). The patch's
-    /// error falls like the fourth power of the spacing: measured in the scaling sea (wavelengths 10–60 m) on the 4 m boat
-    /// against exact queries, 9 nodes per 10 m wave (8×8) 0.03–0.05 % of V, 16 (11×11) 0.008 %, 18.5 (12×12)
-    /// 0.003–0.004 % (docs/benchmarks/waves_lod.csv). 0 = the fixed waterPatchNodes. Default 16, finite, ≥ 0.
+    /// error falls like the fourth power of the spacing (its measured error per setting: docs/benchmarks/waves_lod.csv).
+    /// 0 = the fixed waterPatchNodes. Default 16, finite, ≥ 0.
     /// A patch with at least as many nodes as the points it would stand for (the mesh's vertices or the samples, plus
     /// the drag clusters) is not built: those points are then queried exactly (cheaper, and exact).
     double waterPatchNodesPerWavelength = 16.0;
