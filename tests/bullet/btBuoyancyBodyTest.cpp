@@ -3,6 +3,7 @@
 // action's btRigidBody constructor moves it (so every read and write of the action goes through the interface).
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyBody.h>
+#include <BulletBuoyancy/bullet/btBuoyancyEvents.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
 #include <BulletBuoyancy/bullet/btWaterFrame.h>
 #include <BulletBuoyancy/water/btGerstnerWaterSurface.h>
@@ -127,6 +128,17 @@ struct BulletWorld {
     btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
 };
 
+struct EnterCounter : btBuoyancyEventListener {
+    int enters = 0;
+    const btBuoyancyAction* action = nullptr;
+    const btRigidBody* body = reinterpret_cast<const btRigidBody*>(1);
+    void onEnterWater(const btBuoyancyEvent& e) override {
+        ++enters;
+        action = e.action;
+        body = e.body;
+    }
+};
+
 struct OwnLoop {
     OwnBody* body = nullptr;
 };
@@ -160,7 +172,7 @@ TEST_CASE("body interface: a body of the user's own integrator floats at Archime
                                                                      size.x() * size.x() + size.y() * size.y());
         btTransform start;
         start.setIdentity();
-        start.setOrigin(up * btScalar(0.3));
+        start.setOrigin(up * btScalar(0.5));  // above the water: it falls in (one EnterWater event)
         start.setRotation(btQuaternion(btVector3(1, 0.4f, 0.2f).normalized(), btScalar(0.15)));
         OwnBody body(mass, inertia, start);
         OwnLoop loop{&body};
@@ -168,10 +180,15 @@ TEST_CASE("body interface: a body of the user's own integrator floats at Archime
         btBuoyancyAction action(body, btBuoyancyShape::fromCollisionShape(box), &buoyancy);
         CHECK(action.getRigidBody() == nullptr);
         CHECK(&action.getBody() == &body);
+        EnterCounter events;
+        buoyancy.addEventListener(&events);
         w.world.addAction(&action);
         for (int i = 0; i < 60 * 30; ++i) w.world.stepSimulation(btScalar(1.0 / 60.0), 4, btScalar(dt));
         w.world.removeAction(&action);
         CHECK(body.impulses > 0);
+        CHECK(events.enters == 1);
+        CHECK(events.action == &action);
+        CHECK(events.body == nullptr);  // not a btRigidBody: the event names the action (getBody)
         const double height = double(body.getCenterOfMassPosition().dot(up));
         CHECK(std::abs(height - (-0.02)) < 1e-3);
         CHECK(action.getLastResult().submergedVolume == Approx(mass / rho).epsilon(2e-3));

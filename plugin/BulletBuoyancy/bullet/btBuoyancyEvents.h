@@ -59,7 +59,7 @@ const char* btBuoyancyEventTypeName(btBuoyancyEventType type);
 struct btBuoyancyEvent {
     btBuoyancyEventType type = btBuoyancyEventType::EnterWater; ///< what happened
     btBuoyancyAction* action = nullptr;   ///< the body's action
-    btRigidBody* body = nullptr;          ///< the body (action->getRigidBody())
+    btRigidBody* body = nullptr;          ///< the body (action->getRigidBody(); nullptr for another body type: action->getBody())
     /// The water body entered, left, submerged in or surfaced from: an index in btBuoyancyWorld::getWaterBodies(), or
     /// −1 for the world's unbounded water.
     int waterBody = -1;

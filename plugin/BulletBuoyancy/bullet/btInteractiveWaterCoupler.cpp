@@ -32,7 +32,7 @@ void btInteractiveWaterCoupler::updateAction(btCollisionWorld*, btScalar deltaTi
             // from the waterline area left a box's corners in the raised ring: the body read the water it had
             // just pushed up, sank less, and the loop heaped water under it; the radius also jumped whenever
             // the waterline area did, e.g. when a dropped crate went fully under.)
-            const btTransform pose = a->getRigidBody()->getWorldTransform() * a->getMeshInComFrame();
+            const btTransform pose = a->getBody().getWorldTransform() * a->getMeshInComFrame();
             const Eigen::Vector3d& c = a->getShape()->getBoundsCentre();
             const btVector3 centre = pose * btVector3(btScalar(c.x()), btScalar(c.y()), btScalar(c.z()));
             // The surface's own (water-frame) horizontal coordinates.
