@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)

@@ -9,10 +9,49 @@ BB_VM_INLINE V gatherLanes(const double* base, const std::int32_t* index) {
     return r;
 }
 
+/// The four a_j of every lane (a[l][j]) as four vectors A[j] (lane l of A[j] = a[l][j]): a transpose by shuffles at
+/// 8 and 4 lanes (no lane's value changes), lane by lane at 2.
+template <class W>
+BB_VM_INLINE void transposeRows(const v4d* a, W A[4]) {
+    constexpr int N = Traits<W>::N;
+    if constexpr (N == 8) {
+        // Pairs of lanes side by side, then the j of four lanes together, then of all eight.
+        using V = W;
+        const V p0 = __builtin_shufflevector(a[0], a[1], 0, 1, 2, 3, 4, 5, 6, 7);
+        const V p1 = __builtin_shufflevector(a[2], a[3], 0, 1, 2, 3, 4, 5, 6, 7);
+        const V p2 = __builtin_shufflevector(a[4], a[5], 0, 1, 2, 3, 4, 5, 6, 7);
+        const V p3 = __builtin_shufflevector(a[6], a[7], 0, 1, 2, 3, 4, 5, 6, 7);
+        const V q01 = __builtin_shufflevector(p0, p1, 0, 4, 8, 12, 1, 5, 9, 13);   // j = 0, 1 of lanes 0–3
+        const V q23 = __builtin_shufflevector(p0, p1, 2, 6, 10, 14, 3, 7, 11, 15);  // j = 2, 3 of lanes 0–3
+        const V r01 = __builtin_shufflevector(p2, p3, 0, 4, 8, 12, 1, 5, 9, 13);   // j = 0, 1 of lanes 4–7
+        const V r23 = __builtin_shufflevector(p2, p3, 2, 6, 10, 14, 3, 7, 11, 15);  // j = 2, 3 of lanes 4–7
+        A[0] = __builtin_shufflevector(q01, r01, 0, 1, 2, 3, 8, 9, 10, 11);
+        A[1] = __builtin_shufflevector(q01, r01, 4, 5, 6, 7, 12, 13, 14, 15);
+        A[2] = __builtin_shufflevector(q23, r23, 0, 1, 2, 3, 8, 9, 10, 11);
+        A[3] = __builtin_shufflevector(q23, r23, 4, 5, 6, 7, 12, 13, 14, 15);
+    } else if constexpr (N == 4) {
+        using V = W;
+        const V t0 = __builtin_shufflevector(a[0], a[1], 0, 4, 2, 6);  // j = 0, 2 of lanes 0–1
+        const V t1 = __builtin_shufflevector(a[0], a[1], 1, 5, 3, 7);  // j = 1, 3 of lanes 0–1
+        const V t2 = __builtin_shufflevector(a[2], a[3], 0, 4, 2, 6);  // j = 0, 2 of lanes 2–3
+        const V t3 = __builtin_shufflevector(a[2], a[3], 1, 5, 3, 7);  // j = 1, 3 of lanes 2–3
+        A[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+        A[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+        A[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+        A[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+    } else {
+        double lanes[4][N];
+        for (int l = 0; l < N; ++l)
+            for (int j = 0; j < 4; ++j) lanes[j][l] = a[l][j];
+        for (int j = 0; j < 4; ++j) A[j] = load<W>(lanes[j]);
+    }
+}
+
 /// The patch's interpolant at world (x, z), lane by lane with the operations of WaterPatch::height (the clamp to the
 /// border cells included; x, z finite).
 BB_VM_INLINE V interpolate(const WaterPatch::CellGrid& g, const V& x, const V& z) {
     constexpr int N = Traits<V>::N;
+    typedef std::int32_t VI __attribute__((vector_size(4 * N)));  // one int per lane
     const V lo = splat<V>(1.0), hi = splat<V>(double(g.nodes - 2));
     const int last = g.nodes - 3, perRow = g.nodes - 3;
     const double* coef = g.coefficients;
@@ -22,27 +61,32 @@ BB_VM_INLINE V interpolate(const WaterPatch::CellGrid& g, const V& x, const V& z
     uc = select<V>(mask<V>(hi < uc), hi, uc);
     vc = select<V>(mask<V>(vc < lo), lo, vc);
     vc = select<V>(mask<V>(hi < vc), hi, vc);
-    // Cell and local coordinates: i = min(⌊uc⌋, last) (uc ≥ 1), cell = 16 ((j − 1) perRow + i − 1).
+    // Cell and local coordinates, every lane at once: i = min(⌊uc⌋, last) (uc ≥ 1: truncation is the floor),
+    // tu = uc − i (exact), cell = 16 ((j − 1) perRow + i − 1).
+    const VI lastI = VI{} + last;
+    VI ci = __builtin_convertvector(uc, VI), cj = __builtin_convertvector(vc, VI);
+    ci = ci < lastI ? ci : lastI;
+    cj = cj < lastI ? cj : lastI;
+    const V tu = uc - __builtin_convertvector(ci, V), tv = vc - __builtin_convertvector(cj, V);
+    const VI cellV = ((cj - 1) * perRow + (ci - 1)) * 16;
     std::int32_t cell[N];
-    V tu, tv;
-    for (int l = 0; l < N; ++l) {
-        const int ci = std::min(int(uc[l]), last), cj = std::min(int(vc[l]), last);
-        tu[l] = uc[l] - ci;
-        tv[l] = vc[l] - cj;
-        cell[l] = 16 * ((cj - 1) * perRow + (ci - 1));
-    }
+    double tuLane[N];
+    std::memcpy(cell, &cellV, sizeof cell);
+    store<V>(tuLane, tu);
     // Lane by lane, the cell's 16 coefficients read as four rows of 4 (contiguous loads, no per-lane inserts):
-    // a_j = ((C[12+j] tu + C[8+j]) tu + C[4+j]) tu + C[j] for the four j at once, then the cubic in tv, with the
-    // operations (and so the roundings) of WaterPatch::height.
-    V f;
+    // a_j = ((C[12+j] tu + C[8+j]) tu + C[4+j]) tu + C[j] for the four j at once; then the a_j of all lanes side by
+    // side and the cubic in tv for every lane at once, with the operations (and so the roundings) of
+    // WaterPatch::height.
+    v4d a[N];
     for (int l = 0; l < N; ++l) {
         const double* C = coef + cell[l];
-        const v4d u4 = splat<v4d>(tu[l]);
-        const v4d a = ((load<v4d>(C + 12) * u4 + load<v4d>(C + 8)) * u4 + load<v4d>(C + 4)) * u4 + load<v4d>(C);
-        const double w = tv[l];
-        f[l] = ((a[3] * w + a[2]) * w + a[1]) * w + a[0];
+        const double w = tuLane[l];
+        const v4d u4 = {w, w, w, w};  // a broadcast (tu ≥ 0: the same as splat's + 0)
+        a[l] = ((load<v4d>(C + 12) * u4 + load<v4d>(C + 8)) * u4 + load<v4d>(C + 4)) * u4 + load<v4d>(C);
     }
-    return f;
+    V A[4];
+    transposeRows<V>(a, A);
+    return ((A[3] * tv + A[2]) * tv + A[1]) * tv + A[0];
 }
 
 /// Pass 1 for the vertices [0, n − n mod N) (vertexDepthsOnPatch); returns the first vertex not done, or SIZE_MAX when

@@ -104,17 +104,25 @@ void WaterPatch::build(const btWaterSurface& water, double cx, double cz, double
 
 void WaterPatch::computeCell(std::size_t c, int i, int j) const {
     // Power-basis coefficients of the cell's bicubic: C = M F Mᵀ, F the 4×4 nodes around it (a along x, b along z),
-    // M the Catmull-Rom basis (w_a(t) = Σ_p M[p][a] tᵖ): f = Σ_pq C[p][q] tu^p tv^q.
-    static constexpr double M[4][4] = {{0, 1, 0, 0}, {-0.5, 0, 0.5, 0}, {1, -2.5, 2, -0.5}, {-0.5, 1.5, -1.5, 0.5}};
+    // M the Catmull-Rom basis (w_a(t) = Σ_p M[p][a] tᵖ): f = Σ_pq C[p][q] tu^p tv^q, with
+    //   M = [[0, 1, 0, 0], [−½, 0, ½, 0], [1, −5/2, 2, −½], [−½, 3/2, −3/2, ½]].
+    // Each row of M applied to four values v0..v3 (catmullRomRow), its zero terms left out and its unit factors not
+    // multiplied: the sums of the full product M v in the same order, so the same values (up to the sign of a zero).
+    const auto catmullRomRow = [](double v0, double v1, double v2, double v3, double out[4]) {
+        out[0] = v1;
+        out[1] = v0 * -0.5 + v2 * 0.5;
+        out[2] = ((v0 + v1 * -2.5) + v2 * 2.0) + v3 * -0.5;
+        out[3] = ((v0 * -0.5 + v1 * 1.5) + v2 * -1.5) + v3 * 0.5;
+    };
     double* C = m_coef.data() + 16 * c;
     const double* F = m_f.data() + std::size_t(j - 1) * m_m + (i - 1);  // F[b * M + a]
     double FM[4][4];  // FM[a][q] = Σ_b F[a][b] M[q][b]
-    for (int a = 0; a < 4; ++a)
-        for (int q = 0; q < 4; ++q)
-            FM[a][q] = F[a] * M[q][0] + F[m_m + a] * M[q][1] + F[2 * m_m + a] * M[q][2] + F[3 * m_m + a] * M[q][3];
-    for (int p = 0; p < 4; ++p)
-        for (int q = 0; q < 4; ++q)
-            C[4 * p + q] = M[p][0] * FM[0][q] + M[p][1] * FM[1][q] + M[p][2] * FM[2][q] + M[p][3] * FM[3][q];
+    for (int a = 0; a < 4; ++a) catmullRomRow(F[a], F[m_m + a], F[2 * m_m + a], F[3 * m_m + a], FM[a]);
+    for (int q = 0; q < 4; ++q) {  // C[p][q] = Σ_a M[p][a] FM[a][q]
+        double column[4];
+        catmullRomRow(FM[0][q], FM[1][q], FM[2][q], FM[3][q], column);
+        for (int p = 0; p < 4; ++p) C[4 * p + q] = column[p];
+    }
     m_cellStamp[c] = m_epoch;
 }
 
