@@ -122,21 +122,42 @@ BB_VM_INLINE std::size_t pose(const DragClusters& c, const double R[9], const do
     const V r10 = splat<V>(R[3]), r11 = splat<V>(R[4]), r12 = splat<V>(R[5]);
     const V r20 = splat<V>(R[6]), r21 = splat<V>(R[7]), r22 = splat<V>(R[8]);
     const V tx = splat<V>(t[0]), ty = splat<V>(t[1]), tz = splat<V>(t[2]), three = splat<V>(3.0), zero = V{};
+    // The arrays as local restrict pointers: a store through one of the outputs cannot then be taken to move the
+    // others, so the loop does not reload them every iteration.
+    const double* __restrict px = c.px.data();
+    const double* __restrict py = c.py.data();
+    const double* __restrict pz = c.pz.data();
+    const double* __restrict pax = c.ax.data();
+    const double* __restrict pay = c.ay.data();
+    const double* __restrict paz = c.az.data();
+    const double* __restrict pcxx = c.cxx.data();
+    const double* __restrict pcxy = c.cxy.data();
+    const double* __restrict pcxz = c.cxz.data();
+    const double* __restrict pcyy = c.cyy.data();
+    const double* __restrict pcyz = c.cyz.data();
+    const double* __restrict pczz = c.czz.data();
+    double* __restrict ox = o.x;
+    double* __restrict oy = o.y;
+    double* __restrict oz = o.z;
+    double* __restrict oax = o.ax;
+    double* __restrict oay = o.ay;
+    double* __restrict oaz = o.az;
+    double* __restrict oh = o.halfHeight;
     std::size_t i = 0;
     for (; i + N <= n; i += N) {
-        const V x = load<V>(c.px.data() + i), y = load<V>(c.py.data() + i), z = load<V>(c.pz.data() + i);
-        store<V>(o.x + i, r00 * x + r01 * y + r02 * z + tx);
-        store<V>(o.y + i, r10 * x + r11 * y + r12 * z + ty);
-        store<V>(o.z + i, r20 * x + r21 * y + r22 * z + tz);
-        const V ax = load<V>(c.ax.data() + i), ay = load<V>(c.ay.data() + i), az = load<V>(c.az.data() + i);
-        store<V>(o.ax + i, r00 * ax + r01 * ay + r02 * az);
-        store<V>(o.ay + i, r10 * ax + r11 * ay + r12 * az);
-        store<V>(o.az + i, r20 * ax + r21 * ay + r22 * az);
-        const V cxx = load<V>(c.cxx.data() + i), cxy = load<V>(c.cxy.data() + i), cxz = load<V>(c.cxz.data() + i);
-        const V cyy = load<V>(c.cyy.data() + i), cyz = load<V>(c.cyz.data() + i), czz = load<V>(c.czz.data() + i);
+        const V x = load<V>(px + i), y = load<V>(py + i), z = load<V>(pz + i);
+        store<V>(ox + i, r00 * x + r01 * y + r02 * z + tx);
+        store<V>(oy + i, r10 * x + r11 * y + r12 * z + ty);
+        store<V>(oz + i, r20 * x + r21 * y + r22 * z + tz);
+        const V ax = load<V>(pax + i), ay = load<V>(pay + i), az = load<V>(paz + i);
+        store<V>(oax + i, r00 * ax + r01 * ay + r02 * az);
+        store<V>(oay + i, r10 * ax + r11 * ay + r12 * az);
+        store<V>(oaz + i, r20 * ax + r21 * ay + r22 * az);
+        const V cxx = load<V>(pcxx + i), cxy = load<V>(pcxy + i), cxz = load<V>(pcxz + i);
+        const V cyy = load<V>(pcyy + i), cyz = load<V>(pcyz + i), czz = load<V>(pczz + i);
         const V vy = r10 * (r10 * cxx + r11 * cxy + r12 * cxz) + r11 * (r10 * cxy + r11 * cyy + r12 * cyz) +
                      r12 * (r10 * cxz + r11 * cyz + r12 * czz);
-        store<V>(o.halfHeight + i, vsqrt(three * max<V>(vy, zero)));
+        store<V>(oh + i, vsqrt(three * max<V>(vy, zero)));
     }
     return i;
 }

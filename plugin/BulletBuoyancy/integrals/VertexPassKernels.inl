@@ -47,16 +47,28 @@ BB_VM_INLINE void transposeRows(const v4d* a, W A[4]) {
     }
 }
 
+/// A patch's cells as the interpolation reads them, splat once per pass (a local copy: the passes' stores cannot
+/// alias it, so the loops do not reload it).
+struct PatchLanes {
+    V x0, z0, invH, lo, hi;
+    int last, perRow;
+    const double* coef;
+};
+BB_VM_INLINE PatchLanes patchLanes(const WaterPatch::CellGrid& g) {
+    return PatchLanes{splat<V>(g.x0), splat<V>(g.z0), splat<V>(g.invH), splat<V>(1.0), splat<V>(double(g.nodes - 2)),
+                      g.nodes - 3, g.nodes - 3, g.coefficients};
+}
+
 /// The patch's interpolant at world (x, z), lane by lane with the operations of WaterPatch::height (the clamp to the
 /// border cells included; x, z finite).
-BB_VM_INLINE V interpolate(const WaterPatch::CellGrid& g, const V& x, const V& z) {
+BB_VM_INLINE V interpolate(const PatchLanes& g, const V& x, const V& z) {
     constexpr int N = Traits<V>::N;
     typedef std::int32_t VI __attribute__((vector_size(4 * N)));  // one int per lane
-    const V lo = splat<V>(1.0), hi = splat<V>(double(g.nodes - 2));
-    const int last = g.nodes - 3, perRow = g.nodes - 3;
-    const double* coef = g.coefficients;
+    const V lo = g.lo, hi = g.hi;
+    const int last = g.last, perRow = g.perRow;
+    const double* coef = g.coef;
     // std::min(std::max(u, lo), hi), lane by lane.
-    V uc = (x - splat<V>(g.x0)) * splat<V>(g.invH), vc = (z - splat<V>(g.z0)) * splat<V>(g.invH);
+    V uc = (x - g.x0) * g.invH, vc = (z - g.z0) * g.invH;
     uc = select<V>(mask<V>(uc < lo), lo, uc);
     uc = select<V>(mask<V>(hi < uc), hi, uc);
     vc = select<V>(mask<V>(vc < lo), lo, vc);
@@ -103,6 +115,7 @@ BB_VM_INLINE std::size_t depthsKernel(const VertexShares& s, const double R[9], 
     const double* qx = s.qx.data();
     const double* qy = s.qy.data();
     const double* qz = s.qz.data();
+    const PatchLanes lanes = patchLanes(g);
     Mask<V> bad{};
     std::size_t i = 0;
     for (; i + N <= n; i += N) {
@@ -110,7 +123,7 @@ BB_VM_INLINE std::size_t depthsKernel(const VertexShares& s, const double R[9], 
         const V y = r10 * px + r11 * py + r12 * pz + ty;
         const V x = r00 * px + r01 * py + r02 * pz + tx;
         const V z = r20 * px + r21 * py + r22 * pz + tz;
-        const V f = interpolate(g, x, z);
+        const V f = interpolate(lanes, x, z);
         bad |= mask<V>((f * zero) != zero);  // NaN or ±∞
         store<V>(D + i, select<V>(mask<V>(y > high), dry, y - f));
     }
@@ -122,7 +135,8 @@ BB_VM_INLINE std::size_t heightsKernel(const WaterPatch::CellGrid& g, const doub
                                        double* out) {
     constexpr int N = Traits<V>::N;
     std::size_t i = 0;
-    for (; i + N <= n; i += N) store<V>(out + i, interpolate(g, load<V>(x + i), load<V>(z + i)));
+    const PatchLanes lanes = patchLanes(g);
+    for (; i + N <= n; i += N) store<V>(out + i, interpolate(lanes, load<V>(x + i), load<V>(z + i)));
     return i;
 }
 
