@@ -61,26 +61,25 @@ void WaterPatch::build(const btWaterSurface& water, double cx, double cz, double
     // over h². The interpolant's own second derivative is a combination of these (weights up to 3.75 in the worst
     // case, near 1 for smooth waves: Catmull-Rom reproduces quadratics); 1.25 × the sum is used. Not a strict bound:
     // a node of the moment tree misclassified by it contributes an error of second order in the sliver it gets wrong.
-    double dxx = 0, dzz = 0, dxz = 0;
-    const auto F = [&](int i, int j) { return m_f[std::size_t(j) * nodes + i]; };
-    for (int j = 0; j < nodes; ++j)
-        for (int i = 0; i < nodes; ++i) {
-            if (i > 0 && i + 1 < nodes) dxx = std::max(dxx, std::abs(F(i - 1, j) - 2 * F(i, j) + F(i + 1, j)));
-            if (j > 0 && j + 1 < nodes) dzz = std::max(dzz, std::abs(F(i, j - 1) - 2 * F(i, j) + F(i, j + 1)));
-            if (i + 1 < nodes && j + 1 < nodes)
-                dxz = std::max(dxz, std::abs(F(i + 1, j + 1) - F(i + 1, j) - F(i, j + 1) + F(i, j)));
-        }
-    m_curvature = 1.25 * (std::max(dxx, dzz) + dxz) * m_invH * m_invH;
-    if (!std::isfinite(m_curvature)) m_finite = false;
     // Slope scale (see slopeBound): the largest first difference of the nodes along x and along z over h (the mean
     // slope over a cell edge), as a gradient's length, plus half a cell of the curvature scale (how far the slope
-    // moves within the cell).
-    double dx = 0, dz = 0;
-    for (int j = 0; j < nodes; ++j)
-        for (int i = 0; i < nodes; ++i) {
-            if (i + 1 < nodes) dx = std::max(dx, std::abs(F(i + 1, j) - F(i, j)));
-            if (j + 1 < nodes) dz = std::max(dz, std::abs(F(i, j + 1) - F(i, j)));
-        }
+    // moves within the cell). Both scales row by row, each difference over exactly the nodes it exists for.
+    double dxx = 0, dzz = 0, dxz = 0, dx = 0, dz = 0;
+    const auto F = [&](int i, int j) { return m_f[std::size_t(j) * nodes + i]; };
+    for (int j = 0; j < nodes; ++j) {
+        const double* row = m_f.data() + std::size_t(j) * nodes;
+        for (int i = 1; i + 1 < nodes; ++i) dxx = std::max(dxx, std::abs(row[i - 1] - 2 * row[i] + row[i + 1]));
+        for (int i = 0; i + 1 < nodes; ++i) dx = std::max(dx, std::abs(row[i + 1] - row[i]));
+        if (j + 1 == nodes) continue;
+        const double* next = row + nodes;
+        for (int i = 0; i < nodes; ++i) dz = std::max(dz, std::abs(next[i] - row[i]));
+        for (int i = 0; i + 1 < nodes; ++i) dxz = std::max(dxz, std::abs(next[i + 1] - row[i + 1] - next[i] + row[i]));
+        if (j == 0) continue;
+        const double* prev = row - nodes;
+        for (int i = 0; i < nodes; ++i) dzz = std::max(dzz, std::abs(prev[i] - 2 * row[i] + next[i]));
+    }
+    m_curvature = 1.25 * (std::max(dxx, dzz) + dxz) * m_invH * m_invH;
+    if (!std::isfinite(m_curvature)) m_finite = false;
     m_slope = std::hypot(dx, dz) * m_invH + 0.5 * m_curvature * m_h;
     if (!std::isfinite(m_slope)) m_finite = false;
     // Third-derivative scale (see thirdDerivativeBound): per 4×4 block of nodes, the third differences along x, z and
