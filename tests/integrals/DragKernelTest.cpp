@@ -48,6 +48,18 @@ struct Clusters {
         b.uz = uz.data();
         return b;
     }
+    /// Where poseDragClusters writes: the centres, area vectors and half heights of these arrays.
+    DragClusterPose pose() {
+        DragClusterPose o;
+        o.x = x.data();
+        o.y = y.data();
+        o.z = z.data();
+        o.ax = ax.data();
+        o.ay = ay.data();
+        o.az = az.data();
+        o.halfHeight = half.data();
+        return o;
+    }
 };
 
 /// The scalar reference: the formulas one cluster at a time, as the action summed them before the batch.
@@ -247,16 +259,10 @@ TEST_CASE("drag kernel: posing the clusters at every width matches the rotation 
         const double Rm[9] = {R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2)};
         const double tv[3] = {t.x(), t.y(), t.z()};
         for (int width : widths) {
-            std::vector<double> x(n), y(n), z(n), ax(n), ay(n), az(n), half(n);
-            DragClusterPose out;
-            out.x = x.data();
-            out.y = y.data();
-            out.z = z.data();
-            out.ax = ax.data();
-            out.ay = ay.data();
-            out.az = az.data();
-            out.halfHeight = half.data();
-            poseDragClusters(c, Rm, tv, out, width);
+            Clusters w;
+            w.resize(n);
+            poseDragClusters(c, Rm, tv, w.pose(), width);
+            const std::vector<double>&x = w.x, &y = w.y, &z = w.z, &ax = w.ax, &ay = w.ay, &az = w.az, &half = w.half;
             for (std::size_t i = 0; i < n; ++i) {
                 INFO("clusters " << n << " width " << width << " cluster " << i);
                 const Eigen::Vector3d p = R * Eigen::Vector3d(c.px[i], c.py[i], c.pz[i]) + t;
@@ -333,38 +339,22 @@ TEST_CASE("drag kernel: clusters posed inside the sum give the pose then the sum
         m.kl = 30;
         for (int width : widths) {
             // The reference: the clusters posed into arrays, then summed from them.
-            std::vector<double> x(n), y(n), z(n), ax(n), ay(n), az(n), half(n);
-            DragClusterPose out;
-            out.x = x.data();
-            out.y = y.data();
-            out.z = z.data();
-            out.ax = ax.data();
-            out.ay = ay.data();
-            out.az = az.data();
-            out.halfHeight = half.data();
-            poseDragClusters(c, Rm, tv, out, width);
-            DragClusterBatch b;
-            b.n = n;
-            b.x = x.data();
-            b.y = y.data();
-            b.z = z.data();
-            b.ax = ax.data();
-            b.ay = ay.data();
-            b.az = az.data();
-            b.area = c.area.data();
-            b.cxx = c.cxx.data();
-            b.cxy = c.cxy.data();
-            b.cxz = c.cxz.data();
-            b.cyy = c.cyy.data();
-            b.cyz = c.cyz.data();
-            b.czz = c.czz.data();
-            b.halfHeight = half.data();
-            b.waterHeight = h.data();
-            b.ux = ux.data();
-            b.uy = uy.data();
-            b.uz = uz.data();
+            Clusters w;
+            w.resize(n);
+            poseDragClusters(c, Rm, tv, w.pose(), width);
+            w.area = c.area;
+            w.cxx = c.cxx;
+            w.cxy = c.cxy;
+            w.cxz = c.cxz;
+            w.cyy = c.cyy;
+            w.cyz = c.cyz;
+            w.czz = c.czz;
+            w.h = h;
+            w.ux = ux;
+            w.uy = uy;
+            w.uz = uz;
             double expected[BB_DRAG_TERMS] = {};
-            accumulateClusterDrag(b, m, expected, width);
+            accumulateClusterDrag(w.batch(), m, expected, width);
             DragClusterWater water;
             water.waterHeight = h.data();
             water.ux = ux.data();
