@@ -222,6 +222,38 @@ TEST_CASE("drag kernel: a fully wet sphere of flat samples gets ½ ρ C_d π R²
     }
 }
 
+/// n body-frame clusters: centres in [−1, 1]³, area vectors with components in ±areaScale and areas 1–2 × their
+/// length, covariances G Gᵀ of random G with entries in ±spread (positive semidefinite), none (a flat point) where
+/// flat(i).
+template <class Flat>
+DragClusters randomClusters(std::size_t n, std::mt19937& rng, double areaScale, double spread, const Flat& flat) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    DragClusters c;
+    for (auto* v : {&c.px, &c.py, &c.pz, &c.ax, &c.ay, &c.az, &c.area, &c.cxx, &c.cxy, &c.cxz, &c.cyy, &c.cyz, &c.czz})
+        v->resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        c.px[i] = u(rng);
+        c.py[i] = u(rng);
+        c.pz[i] = u(rng);
+        c.ax[i] = areaScale * u(rng);
+        c.ay[i] = areaScale * u(rng);
+        c.az[i] = areaScale * u(rng);
+        c.area[i] = std::sqrt(c.ax[i] * c.ax[i] + c.ay[i] * c.ay[i] + c.az[i] * c.az[i]) * (1 + 0.5 * (u(rng) + 1));
+        Eigen::Matrix3d G;
+        for (int r = 0; r < 3; ++r)
+            for (int k = 0; k < 3; ++k) G(r, k) = spread * u(rng);
+        if (flat(i)) G.setZero();
+        const Eigen::Matrix3d C = G * G.transpose();
+        c.cxx[i] = C(0, 0);
+        c.cxy[i] = C(0, 1);
+        c.cxz[i] = C(0, 2);
+        c.cyy[i] = C(1, 1);
+        c.cyz[i] = C(1, 2);
+        c.czz[i] = C(2, 2);
+    }
+    return c;
+}
+
 TEST_CASE("drag kernel: posing the clusters at every width matches the rotation written out", "[integrals][drag]") {
     std::mt19937 rng(23);
     std::uniform_real_distribution<double> u(-1, 1);
@@ -230,29 +262,8 @@ TEST_CASE("drag kernel: posing the clusters at every width matches the rotation 
     if (dragKernelLanes() >= 8) widths.push_back(8);
     int compared = 0;
     for (std::size_t n : {std::size_t(1), std::size_t(13), std::size_t(64)}) {
-        DragClusters c;
-        for (auto* v : {&c.px, &c.py, &c.pz, &c.ax, &c.ay, &c.az, &c.area, &c.cxx, &c.cxy, &c.cxz, &c.cyy, &c.cyz, &c.czz})
-            v->resize(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            c.px[i] = u(rng);
-            c.py[i] = u(rng);
-            c.pz[i] = u(rng);
-            c.ax[i] = u(rng);
-            c.ay[i] = u(rng);
-            c.az[i] = u(rng);
-            // A covariance: G Gᵀ of a random G (positive semidefinite); the last cluster has none (a flat point).
-            Eigen::Matrix3d G;
-            for (int r = 0; r < 3; ++r)
-                for (int k = 0; k < 3; ++k) G(r, k) = 0.3 * u(rng);
-            if (i + 1 == n) G.setZero();
-            const Eigen::Matrix3d C = G * G.transpose();
-            c.cxx[i] = C(0, 0);
-            c.cxy[i] = C(0, 1);
-            c.cxz[i] = C(0, 2);
-            c.cyy[i] = C(1, 1);
-            c.cyz[i] = C(1, 2);
-            c.czz[i] = C(2, 2);
-        }
+        // The last cluster has no spread (a flat point).
+        const DragClusters c = randomClusters(n, rng, 1.0, 0.3, [n](std::size_t i) { return i + 1 == n; });
         const Eigen::Matrix3d R =
             Eigen::AngleAxisd(2 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
         const Eigen::Vector3d t(5 * u(rng), 5 * u(rng), 5 * u(rng));
@@ -292,32 +303,13 @@ TEST_CASE("drag kernel: clusters posed inside the sum give the pose then the sum
     // Counts below one vector, at and across the fused sum's blocks of 64, with and without a tail.
     for (std::size_t n : {std::size_t(1), std::size_t(7), std::size_t(64), std::size_t(65), std::size_t(130),
                           std::size_t(257)}) {
-        DragClusters c;
-        for (auto* v : {&c.px, &c.py, &c.pz, &c.ax, &c.ay, &c.az, &c.area, &c.cxx, &c.cxy, &c.cxz, &c.cyy, &c.cyz, &c.czz})
-            v->resize(n);
+        // Every ninth cluster without spread: both halves at the centre.
+        const DragClusters c = randomClusters(n, rng, 0.1, 0.2, [](std::size_t i) { return i % 9 == 4; });
         std::vector<double> h(n), ux(n), uy(n), uz(n);
         const Eigen::Matrix3d R =
             Eigen::AngleAxisd(2 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
         const Eigen::Vector3d t(5 * u(rng), 0.2 * u(rng), 5 * u(rng));
         for (std::size_t i = 0; i < n; ++i) {
-            c.px[i] = u(rng);
-            c.py[i] = u(rng);
-            c.pz[i] = u(rng);
-            c.ax[i] = 0.1 * u(rng);
-            c.ay[i] = 0.1 * u(rng);
-            c.az[i] = 0.1 * u(rng);
-            c.area[i] = std::sqrt(c.ax[i] * c.ax[i] + c.ay[i] * c.ay[i] + c.az[i] * c.az[i]) * (1 + 0.5 * (u(rng) + 1));
-            Eigen::Matrix3d G;
-            for (int r = 0; r < 3; ++r)
-                for (int k = 0; k < 3; ++k) G(r, k) = 0.2 * u(rng);
-            if (i % 9 == 4) G.setZero();  // a flat point: both halves at the centre
-            const Eigen::Matrix3d C = G * G.transpose();
-            c.cxx[i] = C(0, 0);
-            c.cxy[i] = C(0, 1);
-            c.cxz[i] = C(0, 2);
-            c.cyy[i] = C(1, 1);
-            c.cyz[i] = C(1, 2);
-            c.czz[i] = C(2, 2);
             // The water about the cluster's world height: dry, partly and wholly wet ones.
             const double y = (R * Eigen::Vector3d(c.px[i], c.py[i], c.pz[i]) + t).y();
             h[i] = y + 0.6 * u(rng);
