@@ -335,14 +335,11 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
     const Eigen::Matrix3d R = pose.linear();
     const Eigen::Vector3d t = pose.translation();
     const double r10 = R(1, 0), r11 = R(1, 1), r12 = R(1, 2);
-    const double Rm[9] = {R(0, 0), R(0, 1), R(0, 2), r10, r11, r12, R(2, 0), R(2, 1), R(2, 2)};
-    const double tv[3] = {t.x(), t.y(), t.z()};
-    // Reusing the water of the last exact evaluation (and in one water body), the clusters' world positions feed only
-    // the drag sum: posed inside it (integrals/DragKernel.h, the same sums) instead of into the arrays below.
-    const bool posedInSum = reuseWater && !m_straddling;
-    if (!posedInSum) {
+    {
         // Centres, area vectors and vertical half extents in the world (design.md 2.4's covariance ramp), several
         // clusters per instruction (integrals/DragKernel.h).
+        const double Rm[9] = {R(0, 0), R(0, 1), R(0, 2), r10, r11, r12, R(2, 0), R(2, 1), R(2, 2)};
+        const double tv[3] = {t.x(), t.y(), t.z()};
         buoyancy::DragClusterPose out;
         out.x = m_dx.data();
         out.y = m_dy.data();
@@ -426,17 +423,6 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
             motion.v[i] = v[i];
             motion.w[i] = w[i];
         }
-        double part[BB_DRAG_TERMS] = {};
-        if (posedInSum) {
-            buoyancy::DragClusterWater clusterWater;
-            clusterWater.waterHeight = m_dh.data();
-            clusterWater.ux = m_ux.data();
-            clusterWater.uy = m_uy.data();
-            clusterWater.uz = m_uz.data();
-            buoyancy::accumulatePosedClusterDrag(c, Rm, tv, clusterWater, motion, part);
-            for (int k = 0; k < BB_DRAG_TERMS; ++k) sum[k] += part[k];
-            continue;
-        }
         buoyancy::DragClusterBatch batch;
         batch.n = n;
         batch.x = m_dx.data();
@@ -457,6 +443,7 @@ void btBuoyancyAction::computeDrag(const Eigen::Isometry3d& pose, const buoyancy
         batch.ux = m_ux.data();
         batch.uy = m_uy.data();
         batch.uz = m_uz.data();
+        double part[BB_DRAG_TERMS] = {};
         buoyancy::accumulateClusterDrag(batch, motion, part);
         for (int k = 0; k < BB_DRAG_TERMS; ++k) sum[k] += part[k];
     }

@@ -99,45 +99,7 @@ __attribute__((target("avx512f"))) std::size_t poseAvx512(const DragClusters& c,
                                                          const DragClusterPose& o) {
     return avx512::pose(c, R, t, o);
 }
-__attribute__((target("avx2"))) std::size_t posedRunAvx2(const DragClusters& c, const double R[9], const double t[3],
-                                                         const DragClusterWater& water, const DragMotion& m,
-                                                         double part[BB_DRAG_TERMS]) {
-    return avx2::posedRun(c, R, t, water, m, part);
-}
-__attribute__((target("avx512f"))) std::size_t posedRunAvx512(const DragClusters& c, const double R[9],
-                                                              const double t[3], const DragClusterWater& water,
-                                                              const DragMotion& m, double part[BB_DRAG_TERMS]) {
-    return avx512::posedRun(c, R, t, water, m, part);
-}
 #endif
-
-/// Cluster i moved to the world, one by one with the vector pose's operations: x, y, z, ax, ay, az, halfHeight.
-void poseOne(const DragClusters& c, std::size_t i, const double R[9], const double t[3], double out[7]) {
-    const double x = c.px[i], y = c.py[i], z = c.pz[i];
-    out[0] = R[0] * x + R[1] * y + R[2] * z + t[0];
-    out[1] = R[3] * x + R[4] * y + R[5] * z + t[1];
-    out[2] = R[6] * x + R[7] * y + R[8] * z + t[2];
-    const double ax = c.ax[i], ay = c.ay[i], az = c.az[i];
-    out[3] = R[0] * ax + R[1] * ay + R[2] * az;
-    out[4] = R[3] * ax + R[4] * ay + R[5] * az;
-    out[5] = R[6] * ax + R[7] * ay + R[8] * az;
-    const double vy = R[3] * (R[3] * c.cxx[i] + R[4] * c.cxy[i] + R[5] * c.cxz[i]) +
-                      R[4] * (R[3] * c.cxy[i] + R[4] * c.cyy[i] + R[5] * c.cyz[i]) +
-                      R[5] * (R[3] * c.cxz[i] + R[4] * c.cyz[i] + R[5] * c.czz[i]);
-    out[6] = std::sqrt(3.0 * std::max(vy, 0.0));
-}
-
-/// One cluster through the scalar formulas (the clusters after the last full vector), posed as `posed` (poseOne's
-/// order), its spread and area from c.
-void dragOne(const double posed[7], double waterHeight, const double u[3], double area, const double C[6],
-             const DragMotion& m, double part[BB_DRAG_TERMS]) {
-    namespace fm = formulas;
-    const double wet = fm::bb_drag_wet_ramp(posed[6], waterHeight - posed[1]);
-    if (!(wet > 0)) return;
-    const double r[3] = {posed[0] - m.com[0], posed[1] - m.com[1], posed[2] - m.com[2]};
-    fm::bb_drag_cluster_accumulate(m.R, C, r, m.v, m.w, u, posed[3], posed[4], posed[5], area, wet, m.kd, m.kf, m.kl,
-                                   part);
-}
 
 }  // namespace
 
@@ -158,33 +120,15 @@ void accumulateClusterDrag(const DragClusterBatch& c, const DragMotion& m, doubl
 #endif
         done = runSse2(c, m, part);
     // The last clusters one by one through the scalar formulas.
+    namespace fm = formulas;
     for (std::size_t i = done; i < c.n; ++i) {
-        const double posed[7] = {c.x[i], c.y[i], c.z[i], c.ax[i], c.ay[i], c.az[i], c.halfHeight[i]};
+        const double wet = fm::bb_drag_wet_ramp(c.halfHeight[i], c.waterHeight[i] - c.y[i]);
+        if (!(wet > 0)) continue;
+        const double r[3] = {c.x[i] - m.com[0], c.y[i] - m.com[1], c.z[i] - m.com[2]};
         const double u[3] = {c.ux[i], c.uy[i], c.uz[i]};
         const double C[6] = {c.cxx[i], c.cxy[i], c.cxz[i], c.cyy[i], c.cyz[i], c.czz[i]};
-        dragOne(posed, c.waterHeight[i], u, c.area[i], C, m, part);
-    }
-}
-
-void accumulatePosedClusterDrag(const DragClusters& c, const double R[9], const double t[3],
-                                const DragClusterWater& water, const DragMotion& m, double part[BB_DRAG_TERMS],
-                                int lanes) {
-    std::size_t done = 0;
-    const int width = lanes <= 0 ? dragKernelLanes() : std::min(lanes, dragKernelLanes());
-#ifdef BB_DRAG_X86
-    if (width >= 8)
-        done = posedRunAvx512(c, R, t, water, m, part);
-    else if (width >= 4)
-        done = posedRunAvx2(c, R, t, water, m, part);
-    else
-#endif
-        done = sse2::posedRun(c, R, t, water, m, part);
-    for (std::size_t i = done; i < c.size(); ++i) {
-        double posed[7];
-        poseOne(c, i, R, t, posed);
-        const double u[3] = {water.ux[i], water.uy[i], water.uz[i]};
-        const double C[6] = {c.cxx[i], c.cxy[i], c.cxz[i], c.cyy[i], c.cyz[i], c.czz[i]};
-        dragOne(posed, water.waterHeight[i], u, c.area[i], C, m, part);
+        fm::bb_drag_cluster_accumulate(m.R, C, r, m.v, m.w, u, c.ax[i], c.ay[i], c.az[i], c.area[i], wet, m.kd, m.kf,
+                                       m.kl, part);
     }
 }
 
@@ -201,10 +145,18 @@ void poseDragClusters(const DragClusters& c, const double R[9], const double t[3
 #endif
         done = sse2::pose(c, R, t, o);
     for (std::size_t i = done; i < c.size(); ++i) {  // the last clusters one by one, the same operations
-        double posed[7];
-        poseOne(c, i, R, t, posed);
-        double* const dst[7] = {o.x, o.y, o.z, o.ax, o.ay, o.az, o.halfHeight};
-        for (int k = 0; k < 7; ++k) dst[k][i] = posed[k];
+        const double x = c.px[i], y = c.py[i], z = c.pz[i];
+        o.x[i] = R[0] * x + R[1] * y + R[2] * z + t[0];
+        o.y[i] = R[3] * x + R[4] * y + R[5] * z + t[1];
+        o.z[i] = R[6] * x + R[7] * y + R[8] * z + t[2];
+        const double ax = c.ax[i], ay = c.ay[i], az = c.az[i];
+        o.ax[i] = R[0] * ax + R[1] * ay + R[2] * az;
+        o.ay[i] = R[3] * ax + R[4] * ay + R[5] * az;
+        o.az[i] = R[6] * ax + R[7] * ay + R[8] * az;
+        const double vy = R[3] * (R[3] * c.cxx[i] + R[4] * c.cxy[i] + R[5] * c.cxz[i]) +
+                          R[4] * (R[3] * c.cxy[i] + R[4] * c.cyy[i] + R[5] * c.cyz[i]) +
+                          R[5] * (R[3] * c.cxz[i] + R[4] * c.cyz[i] + R[5] * c.czz[i]);
+        o.halfHeight[i] = std::sqrt(3.0 * std::max(vy, 0.0));
     }
 }
 

@@ -57,22 +57,6 @@ struct DragClusterPose {
 void poseDragClusters(const DragClusters& clusters, const double R[9], const double t[3], const DragClusterPose& out,
                       int lanes = 0);
 
-/// The water at each cluster for accumulatePosedClusterDrag (n entries each, the clusters' order).
-struct DragClusterWater {
-    const double* waterHeight = nullptr;                        ///< water height at the cluster, m
-    const double *ux = nullptr, *uy = nullptr, *uz = nullptr;  ///< water velocity at the cluster, m/s
-};
-
-/// poseDragClusters followed by accumulateClusterDrag on the posed clusters, the same sums bit for bit, without
-/// writing the posed clusters out (they are formed a few at a time on the stack): for a substep that reuses the
-/// clusters' water of an earlier one and so needs their world positions only for the drag.
-/// @param R  body → world rotation, row-major; t  translation, m (the pose the motion's R and com belong to)
-/// @param water  the clusters' water heights and velocities
-/// @param lanes  as for accumulateClusterDrag
-void accumulatePosedClusterDrag(const DragClusters& clusters, const double R[9], const double t[3],
-                                const DragClusterWater& water, const DragMotion& motion, double part[11],
-                                int lanes = 0);
-
 /// Lanes the batch uses on this CPU (8 AVX-512F, 4 AVX2, 2 otherwise); for the tests and the benchmark log.
 int dragKernelLanes();
 

@@ -56,13 +56,14 @@ BB_VM_INLINE void pointDrag(const V r[3], const V& A0, const V& A1, const V& A2,
     acc[5] += r[0] * f1 - r[1] * f0;
 }
 
-/// The clusters [0, n − n mod N) of c added to the lanes of acc (run's loop).
-BB_VM_INLINE std::size_t runPart(const DragClusterBatch& c, const DragMotion& m, V acc[11]) {
+BB_VM_INLINE std::size_t run(const DragClusterBatch& c, const DragMotion& m, double part[11]) {
     constexpr int N = Traits<V>::N;
     const V zero = V{}, one = splat<V>(1.0), half = splat<V>(0.5);
     const V v[3] = {splat<V>(m.v[0]), splat<V>(m.v[1]), splat<V>(m.v[2])};
     const V w[3] = {splat<V>(m.w[0]), splat<V>(m.w[1]), splat<V>(m.w[2])};
     const double* R = m.R;
+    V acc[11];
+    for (V& a : acc) a = zero;
     std::size_t i = 0;
     for (; i + N <= c.n; i += N) {
         // Wet fraction (bb_drag_wet_ramp): the linear ramp over the vertical half extent; a NaN gives 0.
@@ -107,30 +108,16 @@ BB_VM_INLINE std::size_t runPart(const DragClusterBatch& c, const DragMotion& m,
         const V rp[3] = {r[0] + d0, r[1] + d1, r[2] + d2};
         pointDrag(rp, A0, A1, A2, a, v, w, u, m, acc);
     }
-    return i;
-}
-
-/// The lanes of acc added to part, lane by lane.
-BB_VM_INLINE void addLanes(const V acc[11], double part[11]) {
     for (int k = 0; k < 11; ++k)
-        for (int l = 0; l < Traits<V>::N; ++l) part[k] += acc[k][l];
-}
-
-/// The clusters [0, n − n mod N) (accumulateClusterDrag); returns the first cluster not done.
-BB_VM_INLINE std::size_t run(const DragClusterBatch& c, const DragMotion& m, double part[11]) {
-    V acc[11];
-    for (V& a : acc) a = V{};
-    const std::size_t i = runPart(c, m, acc);
-    addLanes(acc, part);
+        for (int l = 0; l < N; ++l) part[k] += acc[k][l];
     return i;
 }
 
 
 /// The clusters [0, n − n mod N) moved to the world (poseDragClusters); returns the first cluster not done.
-/// The clusters [begin, end) (end − begin a multiple of N) moved to the world into o[k − begin] (pose's loop).
-BB_VM_INLINE void posePart(const DragClusters& c, std::size_t begin, std::size_t end, const double R[9],
-                           const double t[3], const DragClusterPose& o) {
+BB_VM_INLINE std::size_t pose(const DragClusters& c, const double R[9], const double t[3], const DragClusterPose& o) {
     constexpr int N = Traits<V>::N;
+    const std::size_t n = c.size();
     const V r00 = splat<V>(R[0]), r01 = splat<V>(R[1]), r02 = splat<V>(R[2]);
     const V r10 = splat<V>(R[3]), r11 = splat<V>(R[4]), r12 = splat<V>(R[5]);
     const V r20 = splat<V>(R[6]), r21 = splat<V>(R[7]), r22 = splat<V>(R[8]);
@@ -156,76 +143,21 @@ BB_VM_INLINE void posePart(const DragClusters& c, std::size_t begin, std::size_t
     double* __restrict oay = o.ay;
     double* __restrict oaz = o.az;
     double* __restrict oh = o.halfHeight;
-    for (std::size_t i = begin; i < end; i += N) {
-        const std::size_t j = i - begin;
+    std::size_t i = 0;
+    for (; i + N <= n; i += N) {
         const V x = load<V>(px + i), y = load<V>(py + i), z = load<V>(pz + i);
-        store<V>(ox + j, r00 * x + r01 * y + r02 * z + tx);
-        store<V>(oy + j, r10 * x + r11 * y + r12 * z + ty);
-        store<V>(oz + j, r20 * x + r21 * y + r22 * z + tz);
+        store<V>(ox + i, r00 * x + r01 * y + r02 * z + tx);
+        store<V>(oy + i, r10 * x + r11 * y + r12 * z + ty);
+        store<V>(oz + i, r20 * x + r21 * y + r22 * z + tz);
         const V ax = load<V>(pax + i), ay = load<V>(pay + i), az = load<V>(paz + i);
-        store<V>(oax + j, r00 * ax + r01 * ay + r02 * az);
-        store<V>(oay + j, r10 * ax + r11 * ay + r12 * az);
-        store<V>(oaz + j, r20 * ax + r21 * ay + r22 * az);
+        store<V>(oax + i, r00 * ax + r01 * ay + r02 * az);
+        store<V>(oay + i, r10 * ax + r11 * ay + r12 * az);
+        store<V>(oaz + i, r20 * ax + r21 * ay + r22 * az);
         const V cxx = load<V>(pcxx + i), cxy = load<V>(pcxy + i), cxz = load<V>(pcxz + i);
         const V cyy = load<V>(pcyy + i), cyz = load<V>(pcyz + i), czz = load<V>(pczz + i);
         const V vy = r10 * (r10 * cxx + r11 * cxy + r12 * cxz) + r11 * (r10 * cxy + r11 * cyy + r12 * cyz) +
                      r12 * (r10 * cxz + r11 * cyz + r12 * czz);
-        store<V>(oh + j, vsqrt(three * max<V>(vy, zero)));
+        store<V>(oh + i, vsqrt(three * max<V>(vy, zero)));
     }
-}
-
-/// The clusters [0, n − n mod N) moved to the world (poseDragClusters); returns the first cluster not done.
-BB_VM_INLINE std::size_t pose(const DragClusters& c, const double R[9], const double t[3], const DragClusterPose& o) {
-    constexpr int N = Traits<V>::N;
-    const std::size_t end = c.size() - c.size() % N;
-    posePart(c, 0, end, R, t, o);
-    return end;
-}
-
-/// pose and run fused (accumulatePosedClusterDrag): kBlock clusters at a time posed into buffers on the stack, then
-/// summed with run's operations into the same lanes, so the sums are run's bit for bit; the posed clusters are not
-/// written anywhere else. Returns the first cluster not done.
-BB_VM_INLINE std::size_t posedRun(const DragClusters& c, const double R[9], const double t[3],
-                                  const DragClusterWater& water, const DragMotion& m, double part[11]) {
-    constexpr int N = Traits<V>::N;
-    constexpr std::size_t kBlock = 64;  // a multiple of every width
-    double bx[kBlock], by[kBlock], bz[kBlock], bax[kBlock], bay[kBlock], baz[kBlock], bh[kBlock];
-    DragClusterPose o;
-    o.x = bx;
-    o.y = by;
-    o.z = bz;
-    o.ax = bax;
-    o.ay = bay;
-    o.az = baz;
-    o.halfHeight = bh;
-    V acc[11];
-    for (V& a : acc) a = V{};
-    const std::size_t end = c.size() - c.size() % N;
-    for (std::size_t begin = 0; begin < end; begin += kBlock) {
-        const std::size_t stop = std::min(end, begin + kBlock);
-        posePart(c, begin, stop, R, t, o);
-        DragClusterBatch b;
-        b.n = stop - begin;
-        b.x = bx;
-        b.y = by;
-        b.z = bz;
-        b.ax = bax;
-        b.ay = bay;
-        b.az = baz;
-        b.halfHeight = bh;
-        b.area = c.area.data() + begin;
-        b.cxx = c.cxx.data() + begin;
-        b.cxy = c.cxy.data() + begin;
-        b.cxz = c.cxz.data() + begin;
-        b.cyy = c.cyy.data() + begin;
-        b.cyz = c.cyz.data() + begin;
-        b.czz = c.czz.data() + begin;
-        b.waterHeight = water.waterHeight + begin;
-        b.ux = water.ux + begin;
-        b.uy = water.uy + begin;
-        b.uz = water.uz + begin;
-        runPart(b, m, acc);
-    }
-    addLanes(acc, part);
-    return end;
+    return i;
 }
