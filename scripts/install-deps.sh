@@ -12,6 +12,7 @@ PACKAGES=(
   catch2                   # Catch2 2.13 tests
   libcli11-dev             # CLI11 command-line parsing
   nlohmann-json3-dev       # JSON (CLI output, scene files)
+  libtbb-dev               # oneTBB: the world's threads (OpenMP, part of g++, is the fallback without it)
   # offscreen pictures (`buoyancy run --png`), the scene browser and its test under Xvfb
   libopengl-dev libgl-dev  # OpenGL 3.3 core entry points (GLVND libOpenGL) and GL/glcorearb.h
   libegl-dev libegl-mesa0 libgl1-mesa-dri  # EGL surfaceless + Mesa's llvmpipe: rendering without a display

@@ -67,6 +67,7 @@ struct FleetOptions {
     Writer thruster = Writer::None;  ///< a thruster on body 5
     bool deformable = false;         ///< every sixth body a breathing sampled sphere (btBuoyancyDeformable)
     const btWaterSurface* surface = nullptr;  ///< nullptr: the test's Gerstner sea
+    int queriesAhead = -1;           ///< btBuoyancyWorld::setQueriesAhead: 0 off, 1 on, −1 the default
 };
 
 /// N boxes in waves, each with its buoyancy action (the library's default settings: temporal level of detail, drag
@@ -93,6 +94,7 @@ struct Fleet {
         world.setGravity(btVector3(0, btScalar(-9.81), 0));
         water.setThreads(o.threads);
         water.setBatching(o.batching);
+        if (o.queriesAhead >= 0) water.setQueriesAhead(o.queriesAhead == 1);
         auto box = btBuoyancyShape::create(buoyancy::makeBoxMesh(2.0, 0.8, 1.0));
         auto ball = btBuoyancyShape::create(buoyancy::makeSphereMesh(0.6, 24, 12));
         buoyancy::WaterGraph graph;
@@ -488,7 +490,7 @@ TEST_CASE("threads: the caller's flush-to-zero and denormals-are-zero reach the 
 }
 #endif
 
-#ifdef BUOYANCY_TEST_OPENMP
+#ifdef BUOYANCY_TEST_THREADS
 TEST_CASE("threads: the batch runs on the threads asked for", "[bullet][threads]") {
     for (int threads : {1, 2, 3}) {
         ProbeWater probe;
@@ -515,7 +517,7 @@ TEST_CASE("threads: setThreads and getThreads", "[bullet][threads]") {
     btBuoyancyWorld w(&flat);
     CHECK(w.getThreads() >= 1);  // 0 (default): the hardware's
     w.setThreads(3);
-#ifdef BUOYANCY_TEST_OPENMP
+#ifdef BUOYANCY_TEST_THREADS
     CHECK(w.getThreads() == 3);
 #endif
     w.setThreads(1);
@@ -567,4 +569,119 @@ TEST_CASE("threads: a Bullet task scheduler with threads runs the batch, with th
     CHECK(threads == 2);
     CHECK(scheduler.calls == frames * 4);  // one batch per substep
     CHECK(withScheduler == reference);
+}
+
+namespace {
+/// A Gerstner sea that answers 0.3 m higher (a subclass overriding a query, without a copy of its own).
+struct RaisedWaves : btGerstnerWaterSurface {
+    using btGerstnerWaterSurface::btGerstnerWaterSurface;
+    void heightsCached(const double* x, const double* z, std::size_t n, double t, double* out,
+                       btWaterQueryCache& cache) const override {
+        btGerstnerWaterSurface::heightsCached(x, z, n, t, out, cache);
+        for (std::size_t i = 0; i < n; ++i) out[i] += 0.3;
+    }
+};
+
+/// The fleet of `o` run `frames` frames; the most bodies whose patch heights were queried ahead in one substep.
+std::vector<unsigned char> runCountingQueriesAhead(const FleetOptions& o, int frames, int& most) {
+    Fleet f(o);
+    most = 0;
+    for (int i = 0; i < frames; ++i) {
+        f.run(1);
+        most = std::max(most, f.water.getLastQueriedAhead());
+    }
+    return f.fingerprint();
+}
+}  // namespace
+
+TEST_CASE("threads: wave patch heights queried ahead while Bullet steps change no result", "[bullet][threads]") {
+    // With two threads the world's helper thread queries the heights of the next exact evaluations' wave patches while
+    // Bullet's own step runs; each body uses them only if its patch then has the same nodes, time and surface, so the
+    // results are bit for bit those of one thread (which queries nothing ahead) and of queries ahead switched off.
+    FleetOptions o;
+    const int frames = 60;
+    int mostTwo = 0, mostOne = 0, mostOff = 0;
+    o.threads = 2;
+    o.queriesAhead = 1;
+    const auto two = runCountingQueriesAhead(o, frames, mostTwo);
+    o.queriesAhead = 0;
+    const auto off = runCountingQueriesAhead(o, frames, mostOff);
+    o.threads = 1;
+    o.queriesAhead = 1;
+    const auto one = runCountingQueriesAhead(o, frames, mostOne);
+    CHECK(mostOne == 0);
+    CHECK(mostOff == 0);
+#ifdef BUOYANCY_TEST_THREADS
+    CHECK(mostTwo > 0);  // (the comparison below covers the heights queried ahead)
+#endif
+    CHECK(two == one);
+    CHECK(two == off);
+    // A subclass that overrides a query and has no copy of its own: nothing is queried ahead on it (a copy of the base
+    // class would answer 0.3 m lower).
+    RaisedWaves raised(sea());
+    o.surface = &raised;
+    o.threads = 2;
+    const auto raisedTwo = runCountingQueriesAhead(o, frames / 2, mostTwo);
+    CHECK(mostTwo == 0);
+    o.threads = 1;
+    CHECK(raisedTwo == runCountingQueriesAhead(o, frames / 2, mostOne));
+}
+
+TEST_CASE("threads: queries ahead are on by default with oneTBB's threads, off with OpenMP's", "[bullet][threads]") {
+    btFlatWaterSurface flat;
+    btBuoyancyWorld w(&flat);
+#ifdef BUOYANCY_TEST_QUERIES_AHEAD
+    CHECK(w.getQueriesAhead());
+#else
+    CHECK_FALSE(w.getQueriesAhead());
+#endif
+    w.setQueriesAhead(false);
+    CHECK_FALSE(w.getQueriesAhead());
+    w.setQueriesAhead(true);
+    CHECK(w.getQueriesAhead());
+    CHECK(w.getLastQueriedAhead() == 0);
+}
+
+TEST_CASE("threads: a surface changed, replaced or destroyed between steps while heights are queried ahead",
+          "[bullet][threads]") {
+    // The heights of the last substep's next patches may still be queried after stepSimulation returns: on a copy of
+    // the surface, so the user may change or destroy theirs; a changed surface (a new revision) or another one at the
+    // same address is queried again, never answered from the old one. Each sequence on 2 threads == on 1 thread.
+    std::vector<btGerstnerWave> steeper = sea();
+    for (btGerstnerWave& w : steeper) w.amplitude *= 1.5;
+    const auto sequence = [&](int threads, int& most) {
+        FleetOptions o;
+        o.threads = threads;
+        o.queriesAhead = 1;
+        Fleet f(o);
+        most = 0;
+        const auto frames = [&](int n) {
+            for (int i = 0; i < n; ++i) {
+                f.run(1);
+                most = std::max(most, f.water.getLastQueriedAhead());
+            }
+        };
+        frames(15);
+        // A setter that changes the answers' last bits (the SIMD width of the solve) renews the revision.
+        const int lanes = f.gerstner.simdLanes();
+        f.gerstner.setSimdLanes(lanes == 2 ? 8 : 2);
+        frames(15);
+        // Another surface, then that one destroyed right after a step and a third made at once (often at its address).
+        auto other = std::make_unique<btGerstnerWaterSurface>(steeper);
+        f.water.setWater(other.get());
+        frames(15);
+        other.reset();
+        other = std::make_unique<btGerstnerWaterSurface>(sea());
+        f.water.setWater(other.get());
+        frames(15);
+        return f.fingerprint();
+    };
+    int mostTwo = 0, mostOne = 0;
+    const auto two = sequence(2, mostTwo);
+    const auto one = sequence(1, mostOne);
+#ifdef BUOYANCY_TEST_THREADS
+    CHECK(mostTwo > 0);
+#endif
+    CHECK(mostOne == 0);
+    CHECK(two == one);
 }

@@ -688,6 +688,71 @@ void btBuoyancyAction::evaluate(const btCollisionWorld* collisionWorld, double d
     computeImpulses(c, f);
     recordResult(c, f);
     decideImpulseAndSleep(c, f);
+    requestPatchPrebuild(c);
+}
+
+void btBuoyancyAction::requestPatchPrebuild(const SubstepContext& c) {
+    // The next substep's patch heights, queried on the world's helper thread while Bullet steps (design.md 3 "Queries
+    // ahead"): asked for only when that substep builds a patch by the same rules as buildWaterPatch, and used only if
+    // the patch it builds has the same lattice, time and water (else queried then, as without this).
+    m_prebuild.wanted = false;
+    if (!m_world->prebuildsPatches()) return;
+    const btWaterSurface* water = c.water;
+    if (c.straddling || m_settings.waterPatchNodes <= 0 || !water->prefersHeightPatch()) return;
+    const btWaterSurface* copy = m_world->surfaceForQueriesAhead(water);
+    if (!copy) return;
+    // An exact substep by the temporal level of detail's schedule (every substep without it); the substeps its checks
+    // make exact are not known ahead.
+    const bool temporalLod = m_lod.getInterval() > 1 && m_settings.buoyancyEnabled && !m_deformable &&
+                             !m_world->getDeviceBackend();
+    if (temporalLod && !m_lod.isEvaluationSubstep(m_world->getSubstep() + 1)) return;
+    const int nodes = btBuoyancyWaterPatchNodes(m_settings, c.br, water->shortestWavelength());
+    const std::size_t hydroPoints = m_shape->getIntegrationMethod().sampled ? getSamplesInUse().size()
+                                                                            : m_shape->getMesh().vertices.size();
+    const bool dragOn = m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 ||
+                        m_settings.linearDamping > 0 || m_settings.radiationDamping > 0;
+    const std::size_t dragPoints = dragOn ? m_drag->size() : 0;
+    if (!(std::size_t(nodes) * std::size_t(nodes) < std::max(hydroPoints, dragPoints))) return;
+    // Where the footprint will be: moved by the body's horizontal velocity over one substep (a guess: a wrong one
+    // only costs the queries).
+    const Eigen::Vector3d v = c.frame->toWaterVector(toEigen(m_body->getLinearVelocity()));
+    const double cx = c.bc.x() + v.x() * c.dt, cz = c.bc.z() + v.z() * c.dt;
+    if (!std::isfinite(cx) || !std::isfinite(cz)) return;
+    try {
+        m_prebuild.lattice = buoyancy::WaterPatch::lattice(cx, cz, c.br, nodes);
+    } catch (const std::exception&) {
+        return;
+    }
+    m_prebuild.water = water;
+    m_prebuild.copy = copy;
+    m_prebuild.revision = water->getRevision();
+    m_prebuild.time = c.time + c.dt;  // the world's clock at the next substep (btBuoyancyWorld::beginSubstepIfNew)
+    m_prebuild.nodes = nodes;
+    m_prebuild.ready = false;
+    m_prebuild.wanted = true;
+}
+
+bool btBuoyancyWorldPrebuildPatch(btBuoyancyAction& action) {
+    btBuoyancyAction::PatchPrebuild& p = action.m_prebuild;
+    if (!p.wanted) return false;
+    p.wanted = false;
+    p.ready = false;
+    try {
+        double flatH = 0;
+        if (p.copy->isFlat(p.time, flatH)) return false;
+        buoyancy::WaterPatch::nodePositions(p.lattice, p.nodes, p.qx, p.qz);
+        p.f.resize(p.qx.size());
+        // The body's warm start, as the query at the next substep would start from it; the copy answers as the
+        // surface does, so its warm start is the surface's (the cache names its surface by address).
+        p.cache = action.m_patchCache;
+        if (p.cache.owner == p.water) p.cache.owner = p.copy;
+        p.copy->heightsCached(p.qx.data(), p.qz.data(), p.qx.size(), p.time, p.f.data(), p.cache);
+        if (p.cache.owner == p.copy) p.cache.owner = p.water;
+        p.ready = true;
+    } catch (...) {
+        p.ready = false;
+    }
+    return p.ready;
 }
 
 void btBuoyancyAction::startEvaluation(const btCollisionWorld* collisionWorld) {
@@ -754,6 +819,7 @@ bool btBuoyancyAction::readBodyPose(SubstepContext& c) {
         m_dragCache.reset();
         m_probeCache.reset();
         m_patchCache.reset();
+        m_prebuild.ready = m_prebuild.wanted = false;
     }
     c.pose = frame.toWater(toEigen(m_body->getWorldTransform() * getMeshInComFrame()));
     c.com = frame.toWaterPoint(toEigen(m_body->getCenterOfMassPosition()));
@@ -843,6 +909,7 @@ BB_NOT_INLINED void btBuoyancyAction::chooseWaterBody(SubstepContext& c) {
         m_dragCache.reset();
         m_probeCache.reset();
         m_patchCache.reset();
+        m_prebuild.ready = m_prebuild.wanted = false;
         m_activeWaterBody = waterBody;
     }
     c.water = waterBody >= 0 ? waterBodies[std::size_t(waterBody)].surface : nullptr;
@@ -932,7 +999,18 @@ void btBuoyancyAction::buildWaterPatch(const SubstepContext& c, SubstepForces& f
                 // within it (its warm start, m_patchCache, is the body's). A per-body patch (8 KB of cells for 11
                 // nodes) was out of the cache again by the body's next exact evaluation in a large fleet.
                 thread_local buoyancy::WaterPatch patchScratch;
-                patchScratch.build(*water, c.bc.x(), c.bc.z(), c.br, c.time, int(nodes), m_patchCache);
+                PatchPrebuild& p = m_prebuild;
+                if (p.ready && p.water == water && p.revision == water->getRevision() && p.time == c.time &&
+                    p.nodes == int(nodes) &&
+                    p.lattice == buoyancy::WaterPatch::lattice(c.bc.x(), c.bc.z(), c.br, int(nodes))) {
+                    // The heights queried ahead are those this query would give (same nodes, time, surface and
+                    // warm start): the patch and the warm start after it are bit for bit the same.
+                    patchScratch.buildFromHeights(c.bc.x(), c.bc.z(), c.br, int(nodes), p.f.data());
+                    std::swap(m_patchCache, p.cache);
+                } else {
+                    patchScratch.build(*water, c.bc.x(), c.bc.z(), c.br, c.time, int(nodes), m_patchCache);
+                }
+                p.ready = false;
                 if (patchScratch.finite()) {
                     if (nodes * nodes < hydroPoints) f.patch = &patchScratch;
                     if (nodes * nodes < dragPoints) f.dragPatch = &patchScratch;
@@ -1427,6 +1505,7 @@ void btBuoyancyAction::restoreState(const unsigned char* data, std::size_t size)
     if (m_world->isDispatchingEvents())
         throw std::logic_error("btBuoyancyAction::restoreState: called from an event callback; restore between "
                                "stepSimulation calls");
+    m_world->finishPrebuilds();  // the heights queried ahead read the warm start about to be replaced
     btBuoyancyStateReader in(data, size, btBuoyancyStateKind::Action, "btBuoyancyAction::restoreState");
     in.expectCount(in.u64("sample count"), m_shape->getSamples().size(), "the shape's sample count");
     in.expectCount(in.u64("mesh vertex count"), m_shape->getMesh().vertices.size(), "the mesh's vertex count");
@@ -1532,6 +1611,7 @@ void btBuoyancyAction::restoreState(const unsigned char* data, std::size_t size)
     m_dragCache = std::move(dragCache);
     m_probeCache = std::move(probeCache);
     m_patchCache = std::move(patchCache);
+    m_prebuild.ready = m_prebuild.wanted = false;
     m_marineSubstep = marineSubstep;
     m_marineVelocity = marineVelocity;
     m_marineRotation = marineRotation;

@@ -71,6 +71,10 @@ void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* c
 /// (the batch walks many bodies whose state is no longer cached): its own object (`referenced` false), or, a stage
 /// later, what it points to (its rigid body, its body's mesh frame). Changes nothing.
 void btBuoyancyWorldPrefetch(const btBuoyancyAction& action, bool referenced);
+/// Internal (btBuoyancyWorld's batch): query the wave heights of the patch the action's next exact evaluation will
+/// build, when its last evaluation asked for it (while Bullet steps, on another thread); true when they were queried.
+/// Changes no result.
+bool btBuoyancyWorldPrebuildPatch(btBuoyancyAction& action);
 
 /// What btBuoyancyAction::setBodyMassFromShape set, and how exactly Bullet's diagonal inertia represents the solid.
 struct btBuoyancyMassResult {
@@ -242,6 +246,7 @@ private:
     friend class btBuoyancyImmediate;  // steps a body that is in no Bullet world (m_outsideWorld)
     friend void btBuoyancyWorldEvaluate(btBuoyancyAction& action, const btCollisionWorld* collisionWorld, double dt);
     friend void btBuoyancyWorldPrefetch(const btBuoyancyAction& action, bool referenced);
+    friend bool btBuoyancyWorldPrebuildPatch(btBuoyancyAction& action);
     /// Everything of a substep that reads the body and writes only this action's state: the water, hydrostatics,
     /// drag, the temporal level of detail and the decisions; what it would write into the body is kept for
     /// applyPending. Safe to run for different bodies at once. dt: substep, s (> 0, finite).
@@ -262,6 +267,8 @@ private:
     /// What the phases of a body the water reaches hand on: hydrostatics, added mass, drag and impulses (defined in
     /// btBuoyancyAction.cpp; built only once the body is wet).
     struct SubstepForces;
+    /// Ask for the next substep's patch heights (btBuoyancyWorldPrebuildPatch), when that substep will build one.
+    void requestPatchPrebuild(const SubstepContext& c);
     /// Marks the substep evaluated and clears what the last one left pending (m_evaluatedSubstep, the pending flags,
     /// m_result.applied and .status); debug builds check that the body is in `collisionWorld`.
     void startEvaluation(const btCollisionWorld* collisionWorld);
@@ -419,6 +426,20 @@ private:
     /// Fewer wave queries (design.md 2.5): the warm start of the per-body grid of water heights (the grid itself is the
     /// evaluating thread's scratch).
     btWaterQueryCache m_patchCache;
+    /// The next exact evaluation's patch heights, queried ahead (btBuoyancyWorldPrebuildPatch): used when the patch
+    /// then built has the same lattice, time and water, so the results are those of querying them then.
+    struct PatchPrebuild {
+        bool wanted = false;                     ///< asked for by the last evaluation
+        bool ready = false;                      ///< heights queried
+        const btWaterSurface* water = nullptr;   ///< the surface the patch is for
+        const btWaterSurface* copy = nullptr;    ///< its copy that is queried (btWaterSurface::cloneForQueriesAhead)
+        std::uint64_t revision = 0;              ///< the surface's revision when asked for
+        double time = 0;                         ///< the water's time, s
+        int nodes = 0;                           ///< nodes per side
+        buoyancy::WaterPatch::Lattice lattice;   ///< where the nodes are
+        std::vector<double> qx, qz, f;           ///< node positions (m) and heights (m)
+        btWaterQueryCache cache;                 ///< m_patchCache after the query
+    } m_prebuild;
     /// @name Sleeping: Bullet tests the stored velocity, which at rest on the water is +g·dt, not 0 (the kick for
     /// the next substep comes after integration: symplectic Euler, design.md 3), against thresholds that a bobbing
     /// body passes at the top of every bob. In the water the action decides instead, on the body's energy above

@@ -1,6 +1,7 @@
 /// @file btBuoyancyThreads.cpp
 /// The parallel evaluation of a btBuoyancyWorld's bodies (declared in bullet/btBuoyancyWorld.h): which actions form
-/// the batch of a substep, and the threads that evaluate it (OpenMP, or Bullet's task scheduler when it has one).
+/// the batch of a substep, the threads that evaluate it (oneTBB or OpenMP, or Bullet's task scheduler when it has
+/// one), and the helper thread that queries the next substep's wave patch heights while Bullet steps.
 
 #include <BulletBuoyancy/bullet/btBuoyancyAction.h>
 #include <BulletBuoyancy/bullet/btBuoyancyWorld.h>
@@ -11,11 +12,19 @@
 #include <LinearMath/btThreads.h>
 
 #include <algorithm>
+#include <condition_variable>
+#include <mutex>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <thread>
+#include <vector>
 #include <stdexcept>
 #include <string>
 
 #ifdef BULLET_BUOYANCY_HAS_TBB
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
@@ -71,6 +80,19 @@ private:
     unsigned m_saved;
 };
 
+#ifdef BULLET_BUOYANCY_HAS_TBB
+/// `threads`, at most as many as oneTBB runs at once (it has that many workers; asking for more only makes it warn).
+int arenaThreads(int threads) { return std::max(1, std::min(threads, tbb::info::default_concurrency())); }
+
+/// The calling thread's task arena of `threads` threads (arenaThreads), kept between substeps.
+tbb::task_arena* arenaFor(int threads) {
+    threads = arenaThreads(threads);
+    thread_local std::unique_ptr<tbb::task_arena> arena;
+    if (!arena || arena->max_concurrency() != threads) arena = std::make_unique<tbb::task_arena>(threads);
+    return arena.get();
+}
+#endif
+
 /// Bullet's task scheduler, when the Bullet in use has one with more than one thread.
 btITaskScheduler* bulletScheduler() {
     btITaskScheduler* scheduler = btGetTaskScheduler();
@@ -106,8 +128,7 @@ void parallelOver(int n, int threads, unsigned csr, const Item& item) {
     // oneTBB (BULLET_BUOYANCY_TBB): the same chunks on a task arena of `threads` threads, kept between substeps.
     threads = std::min(threads, n);
     if (threads > 1 && n >= 4) {
-        thread_local std::unique_ptr<tbb::task_arena> arena;
-        if (!arena || arena->max_concurrency() != threads) arena = std::make_unique<tbb::task_arena>(threads);
+        tbb::task_arena* arena = arenaFor(threads);
         const int chunk = std::max(1, std::min(16, n / (8 * threads)));
         arena->execute([&] {
             tbb::parallel_for(
@@ -173,6 +194,163 @@ void refreshMembers(const btAlignedObjectArray<btActionInterface*>& actions, con
 
 }  // namespace
 
+/// The patch heights queried ahead (btBuoyancyWorldPrebuildPatch; design.md 3 "Queries ahead") for the members of the
+/// last batch: taken one by one by the helper thread while Bullet steps, and by the calling thread for what is left
+/// when the next substep begins. Each body's query writes only that body's prebuild record, so who takes it changes
+/// nothing.
+struct btBuoyancyWorld::PrebuildJob {
+    /// A copy of a surface the world's bodies are in (btWaterSurface::cloneForQueriesAhead): the queries ahead read
+    /// only copies, never the user's surface, which may change or go between stepSimulation calls.
+    struct SurfaceCopy {
+        const btWaterSurface* surface = nullptr;
+        std::uint64_t revision = 0;
+        std::shared_ptr<const btWaterSurface> copy;  ///< nullptr: the surface has none
+    };
+    std::vector<SurfaceCopy> copies;
+    std::atomic<int> next{0};           ///< the next member to take
+    std::atomic<int> done{0};           ///< members finished
+    std::atomic<int> queried{0};        ///< members whose heights were queried
+    std::atomic<bool> queued{false};    ///< the worker's task has not returned yet
+    int n = 0;
+    btBuoyancyAction* const* list = nullptr;
+    unsigned csr = 0;
+    bool active = false;
+    /// The helper thread that runs work() once per start(), asleep in between (a thread of its own: an OpenMP or oneTBB
+    /// task would have to be joined before the batch returns to Bullet).
+    std::thread helper;
+    std::mutex mutex;
+    std::condition_variable wake;
+    std::uint64_t generation = 0;  ///< start()s so far (guarded by mutex)
+    bool stop = false;             ///< (guarded by mutex)
+    void start() {
+        if (!helper.joinable()) helper = std::thread([this] { serve(); });
+        {
+            const std::lock_guard<std::mutex> lock(mutex);
+            ++generation;
+        }
+        wake.notify_one();
+    }
+    void serve() {
+        std::uint64_t seen = 0;
+        for (;;) {
+            {
+                std::unique_lock<std::mutex> lock(mutex);
+                wake.wait(lock, [&] { return stop || generation != seen; });
+                if (stop) return;
+                seen = generation;
+            }
+            work();
+            queued.store(false, std::memory_order_release);
+        }
+    }
+    ~PrebuildJob() {
+        if (!helper.joinable()) return;
+        {
+            const std::lock_guard<std::mutex> lock(mutex);
+            stop = true;
+        }
+        wake.notify_one();
+        helper.join();
+    }
+    void work() {
+        FpState fp(csr);
+        for (;;) {
+            const int i = next.fetch_add(1, std::memory_order_acq_rel);
+            if (i >= n) break;
+            if (btBuoyancyWorldPrebuildPatch(*list[i])) queried.fetch_add(1, std::memory_order_relaxed);
+            done.fetch_add(1, std::memory_order_acq_rel);
+        }
+    }
+};
+
+const btWaterSurface* btBuoyancyWorld::surfaceForQueriesAhead(const btWaterSurface* water) const {
+    if (!m_prebuildJob) return nullptr;
+    for (const PrebuildJob::SurfaceCopy& c : m_prebuildJob->copies)
+        if (c.surface == water) return c.revision == water->getRevision() ? c.copy.get() : nullptr;
+    return nullptr;
+}
+
+void btBuoyancyWorld::preparePrebuilds(int batchSize) {
+    m_prebuildPatches = false;
+    // Only where a core is free while Bullet steps: on by setQueriesAhead, two or more threads of the library's own
+    // (Bullet's task scheduler, when there is one, runs Bullet's own step on them).
+    if (!m_queriesAhead || bulletScheduler() || std::min(getThreads(), batchSize) < 2 || batchSize < 4) return;
+    if (!m_prebuildJob) m_prebuildJob = std::make_shared<PrebuildJob>();
+    PrebuildJob& job = *m_prebuildJob;
+    // The surfaces the bodies may be in: the unbounded water and the water bodies'. A copy is made for a surface (or
+    // revision) new to the world; those no longer in it are dropped.
+    const auto keep = [&](const btWaterSurface* s, std::vector<PrebuildJob::SurfaceCopy>& into) {
+        if (!s) return;
+        for (const PrebuildJob::SurfaceCopy& c : into)
+            if (c.surface == s) return;
+        for (PrebuildJob::SurfaceCopy& c : job.copies)
+            if (c.surface == s && c.revision == s->getRevision()) {
+                into.push_back(std::move(c));
+                c.surface = nullptr;
+                return;
+            }
+        PrebuildJob::SurfaceCopy c;
+        c.surface = s;
+        c.revision = s->getRevision();
+        try {
+            c.copy = s->cloneForQueriesAhead();
+        } catch (...) {
+            c.copy = nullptr;  // (a user's copy that throws: no queries ahead on that surface)
+        }
+        into.push_back(std::move(c));
+    };
+    bool same = job.copies.size() == m_waterBodies.size() + (m_water ? 1 : 0);
+    for (std::size_t i = 0; same && i < job.copies.size(); ++i) {
+        const btWaterSurface* s = i == 0 && m_water ? m_water : m_waterBodies[i - (m_water ? 1 : 0)].surface;
+        same = job.copies[i].surface == s && job.copies[i].revision == s->getRevision();
+    }
+    if (!same) {  // (no allocation while the surfaces stay the same)
+        std::vector<PrebuildJob::SurfaceCopy> next;
+        keep(m_water, next);
+        for (const btWaterBody& b : m_waterBodies) keep(b.surface, next);
+        job.copies = std::move(next);
+    }
+    for (const PrebuildJob::SurfaceCopy& c : job.copies)
+        if (c.copy) m_prebuildPatches = true;
+}
+
+void btBuoyancyWorld::startPrebuilds(unsigned csr) {
+    if (!m_prebuildPatches || m_batch.empty()) return;
+    PrebuildJob& job = *m_prebuildJob;
+    job.n = int(m_batch.size());
+    job.list = m_batch.data();
+    job.csr = csr;
+    job.next.store(0, std::memory_order_relaxed);
+    job.done.store(0, std::memory_order_relaxed);
+    job.queried.store(0, std::memory_order_relaxed);
+    job.queued.store(true, std::memory_order_release);
+    job.active = true;
+    job.start();
+}
+
+btBuoyancyWorld::~btBuoyancyWorld() { finishPrebuilds(); }
+
+bool btBuoyancyWorld::queriesAheadByDefault() {
+#ifdef BULLET_BUOYANCY_HAS_TBB
+    return true;  // oneTBB's idle worker sleeps soon: the helper gets the core while Bullet steps
+#else
+    return false;  // OpenMP's waiting thread spins through Bullet's step (measured slower with the helper)
+#endif
+}
+
+void btBuoyancyWorld::finishPrebuilds() {
+    if (!m_prebuildJob || !m_prebuildJob->active) {
+        m_lastQueriedAhead = 0;
+        return;
+    }
+    PrebuildJob& job = *m_prebuildJob;
+    job.work();  // what the worker has not taken yet
+    while (job.done.load(std::memory_order_acquire) < job.n || job.queued.load(std::memory_order_acquire))
+        std::this_thread::yield();
+    job.active = false;
+    m_lastQueriedAhead = std::size_t(job.queried.load(std::memory_order_relaxed));
+}
+
 void btBuoyancyWorld::setThreads(int n) {
     if (n < 0)
         throw std::invalid_argument("threads: must be >= 1, or 0 for the hardware's (got " + std::to_string(n) + ")");
@@ -227,6 +405,7 @@ void btBuoyancyWorld::evaluateBatch(const btCollisionWorld* from, double dt) {
     // The results do not depend on which thread takes which body (everything a body evaluation writes is the body's
     // own: its action's state, caches and scratch).
     btBuoyancyAction* const* batch = m_batch.data();
+    preparePrebuilds(n);
     parallelOver(n, getThreads(), FpState::current(),
                  [batch, from, dt, n](int i) {
                      // Two stages ahead: the next action's object, then (its lines arrived) what it points to.
@@ -234,6 +413,7 @@ void btBuoyancyWorld::evaluateBatch(const btCollisionWorld* from, double dt) {
                      if (i + 1 < n) btBuoyancyWorldPrefetch(*batch[i + 1], true);
                      btBuoyancyWorldEvaluate(*batch[i], from, dt);
                  });
+    startPrebuilds(FpState::current());
 }
 
 void btBuoyancyWorld::evaluateFloodingBatch(const btCollisionWorld* from, double dt, const btFloodingAction* caller) {

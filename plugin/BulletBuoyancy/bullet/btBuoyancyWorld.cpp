@@ -127,7 +127,6 @@ void btBuoyancyWorld::followGravity(double gx, double gy, double gz) {
     m_gravityStatus = btBuoyancyStatus::Ok;
 }
 
-btBuoyancyWorld::~btBuoyancyWorld() = default;
 
 void btBuoyancyWorld::setWater(const btWaterSurface* water) {
     if (water && !m_waterBodies.empty())
@@ -213,6 +212,8 @@ void btBuoyancyWorld::setGravity(double g) {
 
 void btBuoyancyWorld::beginSubstepIfNew(std::uint64_t& lastSeen, double dt, const btCollisionWorld* from) {
     if (m_substep == 0 || lastSeen == m_substep) {
+        finishPrebuilds();  // the heights queried ahead while Bullet stepped (btBuoyancyThreads.cpp)
+        m_prebuildPatches = false;
         ++m_substep;
         m_time += dt;
         // The world's gravity of this substep: the world given to the constructor, else the one stepping us.
@@ -251,6 +252,7 @@ std::uint64_t btBuoyancyWorld::registerAction(btBuoyancyAction* action) {
 }
 
 void btBuoyancyWorld::unregisterAction(btBuoyancyAction* action) {
+    finishPrebuilds();
     if (m_dispatching) {
         // Called from an action's destructor (noexcept) while an action's events are delivered: refused with a
         // message, never a use of a destroyed action.
@@ -515,6 +517,7 @@ void btBuoyancyWorld::restoreState(const unsigned char* data, std::size_t size) 
     if (m_dispatching || m_inBatch.load())
         throw std::logic_error("btBuoyancyWorld::restoreState: called during a step (an event callback or the batch); "
                                "restore between stepSimulation calls");
+    finishPrebuilds();
     btBuoyancyStateReader in(data, size, btBuoyancyStateKind::World, "btBuoyancyWorld::restoreState");
     const double time = in.f64("time");
     const std::uint64_t substep = in.u64("substep");

@@ -214,12 +214,24 @@ public:
     /// may use). Results are bit-identical for every value: one thread runs the same batched schedule in order. When
     /// the Bullet in use has a task scheduler with more than one thread (btGetTaskScheduler()), its parallelFor runs
     /// the batch on its pool and its thread count applies instead (one pool for the library and Bullet).
-    /// Without OpenMP at build time (BULLET_BUOYANCY_THREADS=OFF) the batch runs on the calling thread.
+    /// Without threads at build time (BULLET_BUOYANCY_THREADS=OFF) the batch runs on the calling thread.
     /// @throws std::invalid_argument for n < 0
     void setThreads(int n);
     /// The number of threads the next batch runs on, ≥ 1 (setThreads's 0 resolved to the hardware's; 1 when built
-    /// without OpenMP; the scheduler's when Bullet's task scheduler runs the batch).
+    /// without threads; the scheduler's when Bullet's task scheduler runs the batch).
     int getThreads() const;
+    /// Queries ahead: at the end of each batch, a helper thread of the world's own queries the wave heights of the
+    /// patches the bodies' next exact evaluations will build (btBuoyancySettings::waterPatchNodes; the temporal level
+    /// of detail's schedule says which bodies), on a copy of the surface (btWaterSurface::cloneForQueriesAhead), while
+    /// Bullet's own step runs on the calling thread; the next substep uses them where its patch has the same nodes, time
+    /// and surface, so the results are bit for bit those without. Only with 2 or more threads (getThreads) and no
+    /// Bullet task scheduler. The last substep's queries may still run after stepSimulation returns: they read only the
+    /// world's copy and the actions, and the world waits for them before anything they read changes (the next substep,
+    /// removing an action, restoreState, the destructor). Default: on when the library's threads are oneTBB's, off with
+    /// OpenMP's (its waiting thread spins through Bullet's step and would take the helper's core).
+    void setQueriesAhead(bool on) { m_queriesAhead = on; }
+    /// Whether queries ahead are on (setQueriesAhead).
+    bool getQueriesAhead() const { return m_queriesAhead; }
     /// Batching on (default): at the first btBuoyancyAction of the world called in a substep, every body whose
     /// action is in the Bullet world is evaluated (water, hydrostatics, drag, temporal level of detail, decisions),
     /// and each action applies its impulses at its own turn. Off: each action evaluates and applies at its own turn
@@ -233,6 +245,18 @@ public:
     bool getBatching() const { return m_batching; }
     /// Bodies evaluated in the last batch (0 when the last substep ran per action).
     int getLastBatchSize() const { return int(m_lastBatchSize); }
+    /// Wave patch heights queried ahead in the last batch: the bodies whose next exact evaluation's patch heights were
+    /// queried on another thread while Bullet stepped (0 with one thread, without a surface copy, or before the first
+    /// batch). The results are the same with or without (each body's patch is bit for bit the one it would query).
+    int getLastQueriedAhead() const { return int(m_lastQueriedAhead); }
+    /// Internal (btBuoyancyAction): whether the actions of this substep's batch ask for their next exact evaluation's
+    /// patch heights (queried on another thread while Bullet steps).
+    bool prebuildsPatches() const { return m_prebuildPatches; }
+    /// Internal (btBuoyancyAction): the copy of `water` the heights are queried ahead on, or nullptr.
+    const btWaterSurface* surfaceForQueriesAhead(const btWaterSurface* water) const;
+    /// Internal: wait for the heights being queried ahead (prebuildsPatches); nothing when none are. Called before
+    /// anything the queries read is changed: a new substep, an action's removal, a state restore, the destructor.
+    void finishPrebuilds();
     /// Flooding actions (btFloodingAction) whose water moved in the last flooding batch (0 when they flowed per
     /// action: batching off, or no discrete dynamics world stepping them).
     int getLastFloodingBatchSize() const { return int(m_lastFloodingBatchSize); }
@@ -366,5 +390,17 @@ private:
     std::vector<btTimeVaryingMassAction*> m_massRecomputes;  ///< the members whose map changed in the last batch
     std::size_t m_lastMassBatchSize = 0;  ///< time-varying mass actions in the last mass batch
     std::size_t m_lastBatchSize = 0;  ///< bodies evaluated in the last batch
+    bool m_prebuildPatches = false;   ///< see prebuildsPatches
+    static bool queriesAheadByDefault();  ///< on with oneTBB's threads (btBuoyancyThreads.cpp)
+    bool m_queriesAhead = queriesAheadByDefault();  ///< setQueriesAhead
+    std::size_t m_lastQueriedAhead = 0;  ///< see getLastQueriedAhead
+    struct PrebuildJob;
+    /// The heights being queried ahead on another thread, the surface copies they use, and that thread's arena
+    /// (btBuoyancyThreads.cpp).
+    std::shared_ptr<PrebuildJob> m_prebuildJob;
+    /// Decide whether this batch's actions ask for patch heights ahead, and refresh the surface copies.
+    void preparePrebuilds(int batchSize);
+    /// Start querying the batch's requested patch heights on another thread (or nothing).
+    void startPrebuilds(unsigned csr);
     ///@}
 };

@@ -13,30 +13,52 @@
 
 namespace buoyancy {
 
-void WaterPatch::build(const btWaterSurface& water, double cx, double cz, double r, double time, int nodes,
-                       btWaterQueryCache& cache) {
+WaterPatch::Lattice WaterPatch::lattice(double cx, double cz, double r, int nodes) {
     if (nodes < 5 || nodes > 64)
         throw std::invalid_argument("WaterPatch: nodes must be in 5..64 (got " + std::to_string(nodes) + ")");
     if (!std::isfinite(cx) || !std::isfinite(cz) || !std::isfinite(r) || !(r > 0))
         throw std::invalid_argument("WaterPatch: non-finite footprint or radius <= 0");
-    m_m = nodes;
-    m_h = 2.0 * r / double(nodes - 4);
-    m_invH = 1.0 / m_h;
+    Lattice l;
+    l.h = 2.0 * r / double(nodes - 4);
+    const double invH = 1.0 / l.h;
     // Anchor node 1 on the world lattice k·h at or below cx − r: the same body drifting keeps its nodes.
-    m_x0 = (std::floor((cx - r) * m_invH) - 1.0) * m_h;
-    m_z0 = (std::floor((cz - r) * m_invH) - 1.0) * m_h;
+    l.x0 = (std::floor((cx - r) * invH) - 1.0) * l.h;
+    l.z0 = (std::floor((cz - r) * invH) - 1.0) * l.h;
+    return l;
+}
+
+void WaterPatch::nodePositions(const Lattice& l, int nodes, std::vector<double>& qx, std::vector<double>& qz) {
     const std::size_t n = std::size_t(nodes) * std::size_t(nodes);
-    if (m_f.size() != n) {
-        m_qx.resize(n);
-        m_qz.resize(n);
-        m_f.resize(n);
-    }
+    qx.resize(n);
+    qz.resize(n);
     for (int j = 0; j < nodes; ++j)
         for (int i = 0; i < nodes; ++i) {
-            m_qx[std::size_t(j) * nodes + i] = m_x0 + i * m_h;
-            m_qz[std::size_t(j) * nodes + i] = m_z0 + j * m_h;
+            qx[std::size_t(j) * nodes + i] = l.x0 + i * l.h;
+            qz[std::size_t(j) * nodes + i] = l.z0 + j * l.h;
         }
-    water.heightsCached(m_qx.data(), m_qz.data(), n, time, m_f.data(), cache);
+}
+
+void WaterPatch::build(const btWaterSurface& water, double cx, double cz, double r, double time, int nodes,
+                       btWaterQueryCache& cache) {
+    const Lattice l = lattice(cx, cz, r, nodes);
+    nodePositions(l, nodes, m_qx, m_qz);
+    m_f.resize(m_qx.size());
+    water.heightsCached(m_qx.data(), m_qz.data(), m_qx.size(), time, m_f.data(), cache);
+    finishBuild(l, nodes);
+}
+
+void WaterPatch::buildFromHeights(double cx, double cz, double r, int nodes, const double* heights) {
+    const Lattice l = lattice(cx, cz, r, nodes);
+    m_f.assign(heights, heights + std::size_t(nodes) * std::size_t(nodes));
+    finishBuild(l, nodes);
+}
+
+void WaterPatch::finishBuild(const Lattice& l, int nodes) {
+    m_m = nodes;
+    m_h = l.h;
+    m_invH = 1.0 / m_h;
+    m_x0 = l.x0;
+    m_z0 = l.z0;
     // Per-cell polynomial coefficients are computed on first use after this build (cell()).
     const std::size_t cells = std::size_t(nodes - 3) * std::size_t(nodes - 3);
     if (m_cellStamp.size() != cells) {

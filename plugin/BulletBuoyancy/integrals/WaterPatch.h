@@ -30,6 +30,19 @@ public:
     void build(const btWaterSurface& water, double cx, double cz, double r, double time, int nodes,
                btWaterQueryCache& cache);
 
+    /// Where build() puts the nodes of a footprint: node (0, 0) at world (x0, z0), spacing h, m.
+    struct Lattice {
+        double x0 = 0, z0 = 0, h = 0;
+        bool operator==(const Lattice& o) const { return x0 == o.x0 && z0 == o.z0 && h == o.h; }
+    };
+    /// The lattice build() uses for this footprint (same arguments and the same checks).
+    static Lattice lattice(double cx, double cz, double r, int nodes);
+    /// The M×M node positions of a lattice, row by row (x fastest), into qx, qz (resized).
+    static void nodePositions(const Lattice& l, int nodes, std::vector<double>& qx, std::vector<double>& qz);
+    /// build() with the nodes' heights already queried (#nodes², row by row, at nodePositions(lattice(...))): the
+    /// same patch build() makes from those heights.
+    void buildFromHeights(double cx, double cz, double r, int nodes, const double* heights);
+
     /// Interpolated height at world (x, z), m. Points outside the footprint are clamped to its border cells.
     double height(double x, double z) const;
     /// Batch form of height().
@@ -92,6 +105,8 @@ private:
     double m_third = 0;
     double m_slope = 0;
     bool m_finite = true;
+    /// The rest of build() once the lattice and the node heights m_f are in place.
+    void finishBuild(const Lattice& l, int nodes);
     std::vector<double> m_qx, m_qz, m_f;
     mutable std::vector<double> m_coef;             ///< 16 coefficients per cell (cell())
     mutable std::vector<std::uint32_t> m_cellStamp; ///< build epoch each cell's coefficients belong to

@@ -16,6 +16,7 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <typeinfo>
 #include <string>
 
 namespace {
@@ -115,7 +116,14 @@ btGerstnerWaterSurface::btGerstnerWaterSurface(const std::vector<btGerstnerWave>
 
 void btGerstnerWaterSurface::setSimdLanes(int lanes) {
     const int cpu = buoyancy::vmath::cpuLanes();
-    m_lanes = lanes >= 8 && cpu >= 8 ? 8 : (lanes >= 4 && cpu >= 4 ? 4 : 2);
+    const int wanted = lanes >= 8 && cpu >= 8 ? 8 : (lanes >= 4 && cpu >= 4 ? 4 : 2);
+    if (wanted != m_lanes) touchRevision();
+    m_lanes = wanted;
+}
+
+std::unique_ptr<btWaterSurface> btGerstnerWaterSurface::cloneForQueriesAhead() const {
+    if (typeid(*this) != typeid(btGerstnerWaterSurface)) return nullptr;
+    return std::make_unique<btGerstnerWaterSurface>(*this);
 }
 
 double btGerstnerWaterSurface::pointTolerance(double x, double z) const {

@@ -84,6 +84,9 @@ public:
     /// the horizontal map x₀ → x compresses (its Jacobian is ≥ 1 − Σ Q A k; design.md 2.8).
     double heightThirdDerivativeScale(double t) const override;
     bool describeForDevice(double t, btWaterDeviceDescription& out) const override;
+    /// A copy (the waves are immutable; setSimdLanes renews the revision). Only for this class itself: a subclass that
+    /// overrides a query gets nullptr unless it overrides this too.
+    std::unique_ptr<btWaterSurface> cloneForQueriesAhead() const override;
 
     /// Forward parametric surface: the point (x, y, z) of the particle at rest position (x0, z0) at time t, m.
     void surfacePoint(double x0, double z0, double t, double& outX, double& outY, double& outZ) const;

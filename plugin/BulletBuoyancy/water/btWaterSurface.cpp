@@ -1,7 +1,13 @@
 #include <BulletBuoyancy/water/btWaterSurface.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+
+std::uint64_t btWaterSurface::nextRevision() {
+    static std::atomic<std::uint64_t> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+}
 
 void btWaterSurface::velocities(const double*, const double*, const double*, std::size_t n, double, double* outVx,
                                 double* outVy, double* outVz) const {

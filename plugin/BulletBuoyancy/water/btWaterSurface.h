@@ -7,6 +7,8 @@
 #include <BulletBuoyancy/water/btWaterDeviceDescription.h>
 
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 /// A rectangular lattice of horizontal cells: vertical lines x = originX + i·spacingX and z = originZ + j·spacingZ
@@ -39,6 +41,18 @@ struct btWaterQueryCache {
 class btWaterSurface {
 public:
     virtual ~btWaterSurface() = default;
+
+    /// A number naming this surface object and the parameters it answers with: different for every surface object
+    /// created (copies included) and renewed by every setter that changes its answers (touchRevision). Two surfaces
+    /// reached at the same address with the same revision answer alike.
+    std::uint64_t getRevision() const { return m_revision; }
+
+    /// A copy of this surface that answers every query bit for bit as it does, for queries made ahead of time on
+    /// another thread while the caller is free to change or destroy this one (btBuoyancyWorld queries the heights of
+    /// the next exact evaluations' wave patches while Bullet steps; btBuoyancyWorld::getLastQueriedAhead). The copy is
+    /// made when the surface or its revision is new to the world, never per substep. Default: nullptr (no query is made
+    /// ahead on this surface). A subclass that overrides a query must override this too, or leave it nullptr.
+    virtual std::unique_ptr<btWaterSurface> cloneForQueriesAhead() const { return nullptr; }
 
     /// Surface heights f(x_i, z_i, t) for n points.
     /// @param[in] x,z   #n world coordinates, m
@@ -136,6 +150,21 @@ public:
         heights(&x, &z, 1, t, &h);
         return h;
     }
+
+protected:
+    btWaterSurface() : m_revision(nextRevision()) {}
+    /// A copy is another surface object: it gets its own revision.
+    btWaterSurface(const btWaterSurface&) : m_revision(nextRevision()) {}
+    btWaterSurface& operator=(const btWaterSurface&) {
+        m_revision = nextRevision();
+        return *this;
+    }
+    /// Renew the revision: call from every setter that changes the surface's answers.
+    void touchRevision() { m_revision = nextRevision(); }
+
+private:
+    static std::uint64_t nextRevision();
+    std::uint64_t m_revision;
 };
 
 /// Flat, still (or uniformly flowing) water at y = height.
