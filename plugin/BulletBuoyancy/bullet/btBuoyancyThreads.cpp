@@ -210,7 +210,7 @@ struct btBuoyancyWorld::PrebuildJob {
     std::atomic<int> next{0};           ///< the next member to take
     std::atomic<int> done{0};           ///< members finished
     std::atomic<int> queried{0};        ///< members whose heights were queried
-    std::atomic<bool> queued{false};    ///< the worker's task has not returned yet
+    std::atomic<bool> queued{false};    ///< the helper's run of this job has not returned (nor been withdrawn)
     int n = 0;
     btBuoyancyAction* const* list = nullptr;
     unsigned csr = 0;
@@ -221,6 +221,7 @@ struct btBuoyancyWorld::PrebuildJob {
     std::mutex mutex;
     std::condition_variable wake;
     std::uint64_t generation = 0;  ///< start()s so far (guarded by mutex)
+    std::uint64_t taken = 0;       ///< the last generation the helper took or the caller withdrew (guarded by mutex)
     bool stop = false;             ///< (guarded by mutex)
     void start() {
         if (!helper.joinable()) helper = std::thread([this] { serve(); });
@@ -231,17 +232,24 @@ struct btBuoyancyWorld::PrebuildJob {
         wake.notify_one();
     }
     void serve() {
-        std::uint64_t seen = 0;
         for (;;) {
             {
                 std::unique_lock<std::mutex> lock(mutex);
-                wake.wait(lock, [&] { return stop || generation != seen; });
+                wake.wait(lock, [&] { return stop || generation != taken; });
                 if (stop) return;
-                seen = generation;
+                taken = generation;
             }
             work();
             queued.store(false, std::memory_order_release);
         }
+    }
+    /// The caller's: a start() the helper has not taken yet is withdrawn (the caller does its work), so a helper that
+    /// got no core in time (a busy machine) is never waited for.
+    void withdraw() {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (taken == generation) return;
+        taken = generation;
+        queued.store(false, std::memory_order_release);
     }
     ~PrebuildJob() {
         if (!helper.joinable()) return;
@@ -344,7 +352,8 @@ void btBuoyancyWorld::finishPrebuilds() {
         return;
     }
     PrebuildJob& job = *m_prebuildJob;
-    job.work();  // what the worker has not taken yet
+    job.withdraw();  // not started by the helper yet: done here
+    job.work();      // what the helper has not taken yet
     while (job.done.load(std::memory_order_acquire) < job.n || job.queued.load(std::memory_order_acquire))
         std::this_thread::yield();
     job.active = false;
