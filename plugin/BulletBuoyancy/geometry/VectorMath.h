@@ -122,19 +122,33 @@ template <class V>
 BB_VM_INLINE V min(const V& a, const V& b) {
     return select<V>(mask<V>(a < b), a, b);
 }
+/// The lanes of m OR-ed (or AND-ed, And = true) together, by halving the vector: log₂ N shuffles and ORs instead of N
+/// lane extractions (the wide masks' tests sit in the vertex and triangle passes' inner loops).
+template <bool And, class M>
+BB_VM_INLINE std::uint64_t reduceLanes(const M& m) {
+    constexpr unsigned N = sizeof(M) / 8;
+    if constexpr (N == 8) {
+        typedef std::uint64_t H __attribute__((vector_size(32)));
+        const H lo = __builtin_shufflevector(m, m, 0, 1, 2, 3), hi = __builtin_shufflevector(m, m, 4, 5, 6, 7);
+        return reduceLanes<And>(And ? H(lo & hi) : H(lo | hi));
+    } else if constexpr (N == 4) {
+        typedef std::uint64_t H __attribute__((vector_size(16)));
+        const H lo = __builtin_shufflevector(m, m, 0, 1), hi = __builtin_shufflevector(m, m, 2, 3);
+        return reduceLanes<And>(And ? H(lo & hi) : H(lo | hi));
+    } else {
+        static_assert(N == 2, "2, 4 or 8 lanes");
+        return And ? (m[0] & m[1]) : (m[0] | m[1]);
+    }
+}
 /// True when any lane of m is set.
 template <class M>
 BB_VM_INLINE bool any(const M& m) {
-    std::uint64_t r = 0;
-    for (unsigned l = 0; l < sizeof(M) / 8; ++l) r |= m[l];
-    return r != 0;
+    return reduceLanes<false>(m) != 0;
 }
 /// True when every lane of m is set.
 template <class M>
 BB_VM_INLINE bool all(const M& m) {
-    std::uint64_t r = ~std::uint64_t(0);
-    for (unsigned l = 0; l < sizeof(M) / 8; ++l) r &= m[l];
-    return r == ~std::uint64_t(0);
+    return reduceLanes<true>(m) == ~std::uint64_t(0);
 }
 
 /// 1/j! for j = 0 … 16 (the Taylor coefficients below).
