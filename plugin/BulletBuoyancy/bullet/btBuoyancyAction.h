@@ -389,8 +389,6 @@ private:
     std::vector<buoyancy::WaterRegion> m_regionsReached;
     /// The body straddles water bodies this substep: pressure from regionHydrostatics, drag per region.
     bool m_straddling = false;
-    /// Per drag cluster: already wet in an earlier region's pass of this substep (straddling drag).
-    std::vector<std::uint8_t> m_dassigned;
     /// True when the sphere (`centre`, world, m; `radius`, m) is within water body `index`'s region's sides and
     /// reaches no other water body's region.
     bool reachesOnlyWaterBody(std::size_t index, const Eigen::Vector3d& centre, double radius) const;
@@ -416,12 +414,12 @@ private:
     buoyancy::SampleWorkspace m_ws;
     /// Warm-start memory of the water queries on m_ws's points (hydrostatic samples).
     btWaterQueryCache m_waterCache;
-    /// Drag level of detail (design.md 2.5): clusters of the shape's drag samples, and their world-frame
-    /// workspace (positions, area vectors, vertical half extents, water heights and velocities).
+    /// Drag level of detail (design.md 2.5): clusters of the shape's drag samples, and per cluster the water height
+    /// (m) and velocity (m/s) of the last drag evaluation that queried them, which the predicted substeps reuse (the
+    /// rest of a drag evaluation's arrays is the evaluating thread's scratch).
     std::shared_ptr<const buoyancy::DragClusters> m_drag;
-    std::vector<double> m_dx, m_dy, m_dz, m_dax, m_day, m_daz, m_dhalf, m_dh, m_ux, m_uy, m_uz;
+    std::vector<double> m_dh, m_ux, m_uy, m_uz;
     btWaterQueryCache m_dragCache;   ///< warm start of the height and velocity queries at the cluster points
-    std::vector<double> m_px, m_py, m_pz, m_pux, m_puy, m_puz; ///< velocity probes: world points and velocities
     btWaterQueryCache m_probeCache;  ///< warm start of the velocity queries at the probes
     /// Fewer wave queries (design.md 2.5): the warm start of the per-body grid of water heights (the grid itself is the
     /// evaluating thread's scratch).
