@@ -761,13 +761,15 @@ bool btBuoyancyWorldPrebuildPatch(btBuoyancyAction& action) {
     try {
         double flatH = 0;
         if (p.copy->isFlat(p.time, flatH)) return false;
-        buoyancy::WaterPatch::nodePositions(p.lattice, p.nodes, p.qx, p.qz);
-        p.f.resize(p.qx.size());
+        // The node positions: the querying thread's scratch (only the heights are the body's).
+        thread_local std::vector<double> qx, qz;
+        buoyancy::WaterPatch::nodePositions(p.lattice, p.nodes, qx, qz);
+        p.f.resize(qx.size());
         // The body's warm start, as the query at the next substep would start from it; the copy answers as the
         // surface does, so its warm start is the surface's (the cache names its surface by address).
         p.cache = action.m_patchCache;
         if (p.cache.owner == p.water) p.cache.owner = p.copy;
-        p.copy->heightsCached(p.qx.data(), p.qz.data(), p.qx.size(), p.time, p.f.data(), p.cache);
+        p.copy->heightsCached(qx.data(), qz.data(), qx.size(), p.time, p.f.data(), p.cache);
         if (p.cache.owner == p.copy) p.cache.owner = p.water;
         p.ready = true;
     } catch (...) {

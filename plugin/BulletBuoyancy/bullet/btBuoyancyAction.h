@@ -435,7 +435,7 @@ private:
         double time = 0;                         ///< the water's time, s
         int nodes = 0;                           ///< nodes per side
         buoyancy::WaterPatch::Lattice lattice;   ///< where the nodes are
-        std::vector<double> qx, qz, f;           ///< node positions (m) and heights (m)
+        std::vector<double> f;                   ///< node heights, m (row by row, WaterPatch::nodePositions)
         btWaterQueryCache cache;                 ///< m_patchCache after the query
     } m_prebuild;
     /// @name Sleeping: Bullet tests the stored velocity, which at rest on the water is +g·dt, not 0 (the kick for
