@@ -577,8 +577,7 @@ bool btBuoyancyAction::deviceRecord(const btWaterSurface& water, double time, bt
     out.dragClusters = m_drag.get();
     out.dragCoefficient = m_settings.dragCoefficient;
     out.skinFriction = m_settings.skinFriction;
-    out.dragOn = m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 || m_settings.linearDamping > 0 ||
-                 m_settings.radiationDamping > 0;
+    out.dragOn = dragIsOn();
     return true;
 }
 
@@ -719,7 +718,8 @@ void btBuoyancyAction::requestPatchPrebuild(const SubstepContext& c) {
     m_prebuild.wanted = false;
     if (!m_world->prebuildsPatches()) return;
     const btWaterSurface* water = c.water;
-    if (c.straddling || m_settings.waterPatchNodes <= 0 || !water->prefersHeightPatch()) return;
+    const PatchUse use = patchUse(c, water, dragIsOn());
+    if (!use.hydrostatics && !use.drag) return;
     const btWaterSurface* copy = m_world->surfaceForQueriesAhead(water);
     if (!copy) return;
     // An exact substep by the temporal level of detail's schedule (every substep without it); the substeps its checks
@@ -727,13 +727,7 @@ void btBuoyancyAction::requestPatchPrebuild(const SubstepContext& c) {
     const bool temporalLod = m_lod.getInterval() > 1 && m_settings.buoyancyEnabled && !m_deformable &&
                              !m_world->getDeviceBackend();
     if (temporalLod && !m_lod.isEvaluationSubstep(m_world->getSubstep() + 1)) return;
-    const int nodes = btBuoyancyWaterPatchNodes(m_settings, c.br, water->shortestWavelength());
-    const std::size_t hydroPoints = m_shape->getIntegrationMethod().sampled ? getSamplesInUse().size()
-                                                                            : m_shape->getMesh().vertices.size();
-    const bool dragOn = m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 ||
-                        m_settings.linearDamping > 0 || m_settings.radiationDamping > 0;
-    const std::size_t dragPoints = dragOn ? m_drag->size() : 0;
-    if (!(std::size_t(nodes) * std::size_t(nodes) < std::max(hydroPoints, dragPoints))) return;
+    const int nodes = int(use.nodes);
     // Where the footprint will be: moved by the body's horizontal velocity over one substep (a guess: a wrong one
     // only costs the queries).
     const Eigen::Vector3d v = c.frame->toWaterVector(toEigen(m_body->getLinearVelocity()));
@@ -997,8 +991,7 @@ void btBuoyancyAction::buildWaterPatch(const SubstepContext& c, SubstepForces& f
     f.flatH = 0;
     f.flat = water->isFlat(c.time, f.flatH);
     f.patch = nullptr;
-    f.dragOn = m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 ||
-               m_settings.linearDamping > 0 || m_settings.radiationDamping > 0;
+    f.dragOn = dragIsOn();
     // Only for surfaces that say a query costs more than the interpolation (btWaterSurface::prefersHeightPatch:
     // Gerstner's Newton inversion): a grid, FFT or interactive surface answers by a lookup cheaper than the
     // interpolation, and its short ripples would be smoothed away.
@@ -1007,16 +1000,10 @@ void btBuoyancyAction::buildWaterPatch(const SubstepContext& c, SubstepForces& f
     // method, or the samples) and the drag (its clusters) decide apart, so a small
     // body's drag probes do not put its hydrostatics on interpolated heights. Not needed by either: not built.
     f.dragPatch = nullptr;
-    if (!f.predicted && !f.flat && !c.straddling && m_settings.waterPatchNodes > 0 &&
-        water->prefersHeightPatch()) {
-        const std::size_t nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, c.br, water->shortestWavelength()));
-        // The exact-mesh method counts its vertices, not its edge midpoints too: measured in the wave benchmark (the
-        // 16-sided cylinder, 34 vertices and 96 edges, swell), exact heights took 13 µs and the patch 22 µs (its
-        // third-derivative estimate splits more) at the same error.
-        const std::size_t hydroPoints = m_shape->getIntegrationMethod().sampled ? getSamplesInUse().size()
-                                                                                : m_shape->getMesh().vertices.size();
-        const std::size_t dragPoints = f.dragOn ? m_drag->size() : 0;
-        if (nodes * nodes < std::max(hydroPoints, dragPoints)) {
+    if (!f.predicted && !f.flat) {
+        const PatchUse use = patchUse(c, water, f.dragOn);
+        const std::size_t nodes = use.nodes;
+        if (use.hydrostatics || use.drag) {
             try {
                 // Scratch of the calling thread: the patch is built afresh at every exact evaluation and used only
                 // within it (its warm start, m_patchCache, is the body's). A per-body patch (8 KB of cells for 11
@@ -1035,8 +1022,8 @@ void btBuoyancyAction::buildWaterPatch(const SubstepContext& c, SubstepForces& f
                 }
                 p.ready = false;
                 if (patchScratch.finite()) {
-                    if (nodes * nodes < hydroPoints) f.patch = &patchScratch;
-                    if (nodes * nodes < dragPoints) f.dragPatch = &patchScratch;
+                    if (use.hydrostatics) f.patch = &patchScratch;
+                    if (use.drag) f.dragPatch = &patchScratch;
                 }
             } catch (const std::exception&) {
                 f.patch = f.dragPatch = nullptr;  // a degenerate footprint: fall back to exact queries
@@ -1046,6 +1033,22 @@ void btBuoyancyAction::buildWaterPatch(const SubstepContext& c, SubstepForces& f
 
     const buoyancy::WaterPatch* built = f.patch ? f.patch : f.dragPatch;
     if (!f.predicted) m_lod.setWaterSlope(f.flat ? 0.0 : built ? built->slopeBound() : 1.0);
+}
+
+btBuoyancyAction::PatchUse btBuoyancyAction::patchUse(const SubstepContext& c, const btWaterSurface* water,
+                                                       bool dragOn) const {
+    PatchUse use;
+    if (c.straddling || m_settings.waterPatchNodes <= 0 || !water->prefersHeightPatch()) return use;
+    use.nodes = std::size_t(btBuoyancyWaterPatchNodes(m_settings, c.br, water->shortestWavelength()));
+    // The exact-mesh method counts its vertices, not its edge midpoints too: measured in the wave benchmark (the
+    // 16-sided cylinder, 34 vertices and 96 edges, swell), exact heights took 13 µs and the patch 22 µs (its
+    // third-derivative estimate splits more) at the same error.
+    const std::size_t hydroPoints = m_shape->getIntegrationMethod().sampled ? getSamplesInUse().size()
+                                                                            : m_shape->getMesh().vertices.size();
+    const std::size_t dragPoints = dragOn ? m_drag->size() : 0;
+    use.hydrostatics = use.nodes * use.nodes < hydroPoints;
+    use.drag = use.nodes * use.nodes < dragPoints;
+    return use;
 }
 
 bool btBuoyancyAction::evaluateHydrostatics(const SubstepContext& c, SubstepForces& f) {

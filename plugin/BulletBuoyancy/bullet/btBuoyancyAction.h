@@ -269,6 +269,21 @@ private:
     struct SubstepForces;
     /// Ask for the next substep's patch heights (btBuoyancyWorldPrebuildPatch), when that substep will build one.
     void requestPatchPrebuild(const SubstepContext& c);
+    /// Who would use a wave patch over the body in `water` this substep (design.md 2.5): its nodes per side
+    /// (btBuoyancyWaterPatchNodes), and whether the hydrostatics and the drag each stand for more points than its
+    /// nodes (`dragOn`: any drag is set). nodes 0: no patch (a straddling body, patches off, or a surface that prefers
+    /// exact queries). The one rule of buildWaterPatch and requestPatchPrebuild.
+    struct PatchUse {
+        std::size_t nodes = 0;      ///< nodes per side
+        bool hydrostatics = false;  ///< nodes² < the hydrostatics' points (mesh vertices or samples)
+        bool drag = false;          ///< nodes² < the drag clusters
+    };
+    PatchUse patchUse(const SubstepContext& c, const btWaterSurface* water, bool dragOn) const;
+    /// Any drag, skin friction or damping is set (settings).
+    bool dragIsOn() const {
+        return m_settings.dragCoefficient > 0 || m_settings.skinFriction > 0 || m_settings.linearDamping > 0 ||
+               m_settings.radiationDamping > 0;
+    }
     /// Marks the substep evaluated and clears what the last one left pending (m_evaluatedSubstep, the pending flags,
     /// m_result.applied and .status); debug builds check that the body is in `collisionWorld`.
     void startEvaluation(const btCollisionWorld* collisionWorld);
